@@ -1,0 +1,659 @@
+//! The Randolph & Quiggin (2009) non-linear hysteretic seabed law (OMAE2009-79259).
+//!
+//! Read exactly as `shared/spec/seabed-model.md` fixes it; equation numbers are the paper's.
+//! Notation: `ζ = z·Kmax/D`; `k = Kmax/D` so that `dζ/dz = k`.
+//!
+//! **Ultimate limits (eqs 1–2).**
+//! `su(z) = su0 + ρ_su·z`; `Nc = a·(z/D)^b` for `z/D ≥ 0.1`, `Nc = a·0.1^b·sqrt(10·z/D)` below, `0` for
+//! `z ≤ 0`; `Pu = Nc·su·D`; `Pu_suc = −fsuc·Pu`.
+//!
+//! **Initial penetration (eqs 3–4), the backbone.** `P_IP = ζ/(1+ζ)·Pu(z)`.
+//!
+//! **Uplift (eqs 5–9)**, from an episode start `(z0, P0)`:
+//! `u = ζ0 − ζ`, `B = P0 − Pu_suc(z)`, `A_UL = B/Pu(z0)`, `P5 = P0 − u/(A_UL+u)·B` (or `Pu_suc` if `B ≤ 0`);
+//! `E_UL = exp(min(0, (z − z_P0,eff)/(λsuc·z_max,eff)))`, `P_min = E_UL·Pu_suc(z)`, **`P = max(P5, P_min)`**.
+//! `z_c`, where `P5` first reaches zero moving up from `z0`, is computed once per episode
+//! ([`RandolphQuiggin::suction_onset`]); once `z ≤ z_c`, `z_P0,eff = max(z_P0, z_c)`.
+//!
+//! **Repenetration (eqs 10–14)**, from `(z0, P0)`:
+//! `u = ζ − ζ0`, `Pu* = Pu(z)` if `P0 ≤ 0` or there is no `z*`, else `Pu(z*)`;
+//! `A_RP = (Pu − P0)/Pu*`, `P10 = P0 + u/(A_RP+u)·(Pu − P0)` (or `Pu` if `A_RP ≤ 0`);
+//! `E_RP = exp(min(0, (z − z_P0)/(λsuc·max(z_max, z)) − λrep))`, `P_max = E_RP·P_IP(z)`,
+//! **`P = min(P10, P_max)`**, with the continuity guard: if `P0 > P_max(z)` the cap is `P0`.
+//!
+//! **Transitions** are judged against the committed `z_prev` (see the table in the spec and
+//! [`RandolphQuiggin::evaluate`]). Every branch has an analytic tangent `dP/dz`.
+//!
+//! Decisions where the paper is silent (from the spec): `z_P0 = 0` until suction first occurs;
+//! re-contact after lift-off starts Repenetration from `z0 = 0, P0 = 0, z* = none`; the continuity
+//! guard; `z_c` is the *first* root of `P5`. The optional lift-off smoothing
+//! ([`RqParams::liftoff_smoothing`], off by default) caps uplift `P` by `P_IP(z)`, removing the small
+//! force jump the literal eq. 5 gives at lift-off.
+
+use serde::{Deserialize, Serialize};
+
+use crate::{check, ParamError};
+
+/// The model parameters (the paper's Tables 1–4). Strengths in Pa, so `P` comes out in N/m.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RqParams {
+    /// Contact (outer) diameter `D`, m.
+    pub diameter: f64,
+    /// Undrained shear strength at the mudline `su0`, Pa.
+    pub su0: f64,
+    /// Strength gradient `ρ_su`, Pa/m.
+    pub su_gradient: f64,
+    /// Bearing-factor coefficient `a`.
+    pub a: f64,
+    /// Bearing-factor exponent `b`, in (0, 1).
+    pub b: f64,
+    /// Normalised maximum stiffness `Kmax`.
+    pub k_max: f64,
+    /// Suction ratio `fsuc`, in [0, 1].
+    pub f_suc: f64,
+    /// Normalised suction decay distance `λsuc`.
+    pub lambda_suc: f64,
+    /// Normalised repenetration offset `λrep`.
+    pub lambda_rep: f64,
+    /// Cap uplift `P` by `P_IP(z)` (the spec's optional lift-off smoothing). Default off.
+    #[serde(default)]
+    pub liftoff_smoothing: bool,
+}
+
+impl RqParams {
+    /// The paper's Table 1 (the Figure 3 example).
+    pub fn table1() -> Self {
+        Self {
+            diameter: 0.35,
+            su0: 5000.0,
+            su_gradient: 1500.0,
+            a: 6.0,
+            b: 0.25,
+            k_max: 200.0,
+            f_suc: 0.6,
+            lambda_suc: 0.4,
+            lambda_rep: 0.2,
+            liftoff_smoothing: false,
+        }
+    }
+
+    /// The paper's Table 2 (model tests in kaolin, Figures 4–6).
+    pub fn table2() -> Self {
+        Self {
+            diameter: 0.025,
+            su0: 3560.0,
+            su_gradient: 0.0,
+            a: 6.0,
+            b: 0.2,
+            k_max: 250.0,
+            f_suc: 0.7,
+            lambda_suc: 0.7,
+            lambda_rep: 0.4,
+            liftoff_smoothing: false,
+        }
+    }
+
+    /// Checks every parameter; the error names the key and what was expected.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check(self.diameter > 0.0, "diameter", self.diameter, "D > 0 (m)")?;
+        check(self.su0 >= 0.0, "su0", self.su0, "su0 >= 0 (Pa)")?;
+        check(
+            self.su_gradient >= 0.0,
+            "su_gradient",
+            self.su_gradient,
+            "su_gradient >= 0 (Pa/m)",
+        )?;
+        check(
+            self.su0 > 0.0 || self.su_gradient > 0.0,
+            "su0",
+            self.su0,
+            "su0 and su_gradient not both zero (the soil would have no strength)",
+        )?;
+        check(self.a > 0.0, "a", self.a, "a > 0")?;
+        check(self.b > 0.0 && self.b < 1.0, "b", self.b, "0 < b < 1")?;
+        check(self.k_max > 0.0, "k_max", self.k_max, "k_max > 0")?;
+        check(
+            (0.0..=1.0).contains(&self.f_suc),
+            "f_suc",
+            self.f_suc,
+            "0 <= f_suc <= 1",
+        )?;
+        check(
+            self.lambda_suc > 0.0,
+            "lambda_suc",
+            self.lambda_suc,
+            "lambda_suc > 0",
+        )?;
+        check(
+            self.lambda_rep >= 0.0,
+            "lambda_rep",
+            self.lambda_rep,
+            "lambda_rep >= 0",
+        )?;
+        Ok(())
+    }
+}
+
+/// The contact mode of a node (the paper's Figure 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// No contact: `P = 0`.
+    NotInContact,
+    /// First, monotonic penetration on the backbone curve.
+    InitialPenetration,
+    /// Moving up since the last reversal.
+    Uplift,
+    /// Moving down again after an uplift or a re-contact.
+    Repenetration,
+}
+
+impl Mode {
+    /// The name used in CSV and HDF5 output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::NotInContact => "not_in_contact",
+            Mode::InitialPenetration => "initial_penetration",
+            Mode::Uplift => "uplift",
+            Mode::Repenetration => "repenetration",
+        }
+    }
+
+    /// A small integer code for compact output (0 to 3, in the order of [`Mode::name`]'s list).
+    pub fn code(self) -> u8 {
+        match self {
+            Mode::NotInContact => 0,
+            Mode::InitialPenetration => 1,
+            Mode::Uplift => 2,
+            Mode::Repenetration => 3,
+        }
+    }
+}
+
+/// Which formula a trial force came from (for tests, plots and diagnostics).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Branch {
+    /// `P = 0`.
+    NoContact,
+    /// Eq. 3, the backbone.
+    Backbone,
+    /// Eq. 5.
+    Uplift,
+    /// Eq. 8, the decaying suction floor `P_min`.
+    SuctionFloor,
+    /// Eq. 10.
+    Repenetration,
+    /// Eq. 13, the cap `P_max`.
+    RepenetrationCap,
+    /// The continuity guard: `P` held at `P0`.
+    RepenetrationHold,
+    /// The optional lift-off smoothing: uplift `P` capped by `P_IP(z)`.
+    LiftoffSmoothing,
+}
+
+/// The committed history of one node: everything the law needs to evaluate the next trial.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RqHistory {
+    /// The mode after the last converged step.
+    pub mode: Mode,
+    /// Penetration at the last converged step, m.
+    pub z_prev: f64,
+    /// Resistance at the last converged step, N/m.
+    pub p_prev: f64,
+    /// Penetration at the start of the current episode, m.
+    pub z0: f64,
+    /// Resistance at the start of the current episode, N/m.
+    pub p0: f64,
+    /// `z0` of the preceding uplift (uplift episodes carry their own `z0` here), m.
+    pub z_star: Option<f64>,
+    /// Where suction starts in the current uplift episode, m.
+    pub z_c: Option<f64>,
+    /// Largest penetration ever, statics included, m.
+    pub z_max: f64,
+    /// Largest penetration at which suction has started in any uplift, m (0 until it first occurs).
+    pub z_p0: f64,
+    /// Has the node ever been in contact.
+    pub contacted: bool,
+}
+
+impl RqHistory {
+    /// A node that has never touched the seabed, at penetration `z` (≤ 0 expected).
+    pub fn untouched(z: f64) -> Self {
+        Self {
+            mode: Mode::NotInContact,
+            z_prev: z,
+            p_prev: 0.0,
+            z0: 0.0,
+            p0: 0.0,
+            z_star: None,
+            z_c: None,
+            z_max: 0.0,
+            z_p0: 0.0,
+            contacted: false,
+        }
+    }
+}
+
+impl Default for RqHistory {
+    fn default() -> Self {
+        Self::untouched(0.0)
+    }
+}
+
+/// The result of a trial evaluation: the force, its tangent and the history to commit if the step
+/// converges.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RqTrial {
+    /// Soil resistance `P`, N/m (excludes buoyancy).
+    pub p: f64,
+    /// `dP/dz`, N/m².
+    pub tangent: f64,
+    /// The formula `p` came from.
+    pub branch: Branch,
+    /// The history to commit if the step converges.
+    pub next: RqHistory,
+}
+
+/// The law with its parameters validated and its constants precomputed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RqParams", into = "RqParams")]
+pub struct RandolphQuiggin {
+    p: RqParams,
+    /// `Kmax/D`, 1/m.
+    k: f64,
+    /// `a·0.1^b·sqrt(10/D)`: the shallow bearing factor is `c_shallow·sqrt(z)`.
+    c_shallow: f64,
+}
+
+impl TryFrom<RqParams> for RandolphQuiggin {
+    type Error = ParamError;
+    fn try_from(p: RqParams) -> Result<Self, ParamError> {
+        Self::new(p)
+    }
+}
+
+impl From<RandolphQuiggin> for RqParams {
+    fn from(l: RandolphQuiggin) -> Self {
+        l.p
+    }
+}
+
+impl RandolphQuiggin {
+    /// Validates the parameters and builds the law.
+    pub fn new(p: RqParams) -> Result<Self, ParamError> {
+        p.validate()?;
+        Ok(Self {
+            p,
+            k: p.k_max / p.diameter,
+            c_shallow: p.a * 0.1f64.powf(p.b) * (10.0 / p.diameter).sqrt(),
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &RqParams {
+        &self.p
+    }
+
+    /// Bearing factor `Nc(z)` and `dNc/dz` (1/m). Continuous at `z/D = 0.1`, where its slope jumps.
+    #[inline]
+    pub fn nc(&self, z: f64) -> (f64, f64) {
+        let d = self.p.diameter;
+        if z <= 0.0 {
+            (0.0, 0.0)
+        } else if z >= 0.1 * d {
+            let r = z / d;
+            let nc = self.p.a * r.powf(self.p.b);
+            (nc, self.p.b * nc / z)
+        } else {
+            let s = z.sqrt();
+            (self.c_shallow * s, 0.5 * self.c_shallow / s)
+        }
+    }
+
+    /// Ultimate penetration resistance `Pu(z) = Nc·su·D` (N/m) and its derivative (N/m²).
+    #[inline]
+    pub fn pu(&self, z: f64) -> (f64, f64) {
+        if z <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let (nc, dnc) = self.nc(z);
+        let su = self.p.su0 + self.p.su_gradient * z;
+        let d = self.p.diameter;
+        (nc * su * d, (dnc * su + nc * self.p.su_gradient) * d)
+    }
+
+    /// The backbone `P_IP(z) = ζ/(1+ζ)·Pu(z)` and its derivative.
+    #[inline]
+    pub fn p_ip(&self, z: f64) -> (f64, f64) {
+        if z <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let (pu, dpu) = self.pu(z);
+        let zeta = self.k * z;
+        let h = zeta / (1.0 + zeta);
+        let dh = self.k / ((1.0 + zeta) * (1.0 + zeta));
+        (h * pu, dh * pu + h * dpu)
+    }
+
+    /// The history of a node at the start of a dynamic run, from its static penetration `z_s`
+    /// (the spec's decision): Initial Penetration at `P_IP(z_s)` if `z_s > 0`, else untouched.
+    pub fn start_of_dynamics(&self, z_s: f64) -> RqHistory {
+        if z_s > 0.0 {
+            RqHistory {
+                mode: Mode::InitialPenetration,
+                z_prev: z_s,
+                p_prev: self.p_ip(z_s).0,
+                z0: 0.0,
+                p0: 0.0,
+                z_star: None,
+                z_c: None,
+                z_max: z_s,
+                z_p0: 0.0,
+                contacted: true,
+            }
+        } else {
+            RqHistory::untouched(z_s)
+        }
+    }
+
+    /// Eq. 5 alone (no suction floor): `P5(z)` and its derivative for an uplift from `(z0, p0)`.
+    #[inline]
+    fn p5(&self, z0: f64, p0: f64, pu0: f64, z: f64) -> (f64, f64) {
+        let (pu, dpu) = self.pu(z);
+        let fsuc = self.p.f_suc;
+        let b = p0 + fsuc * pu;
+        let db = fsuc * dpu;
+        if b <= 0.0 || pu0 <= 0.0 {
+            return (-fsuc * pu, -fsuc * dpu);
+        }
+        let u = self.k * (z0 - z);
+        let du = -self.k;
+        let a = b / pu0;
+        let da = db / pu0;
+        let den = a + u;
+        let h = u / den;
+        let dh = (a * du - u * da) / (den * den);
+        (p0 - h * b, -(dh * b + h * db))
+    }
+
+    /// `z_c`: the first penetration, moving up from `z0`, at which eq. 5 reaches `P = 0`
+    /// (`Some(z0)` if `P0 ≤ 0`; `None` if it never does above the mudline).
+    ///
+    /// Scans in uplift distance from `z0` (steps growing from `10⁻³` to `¼` of `D/Kmax`) and then
+    /// bisects the first sign change to machine precision. A pair of roots closer together than
+    /// `D/(4·Kmax)` could be missed; that needs `P5` to graze zero, where suction is negligible anyway.
+    pub fn suction_onset(&self, z0: f64, p0: f64) -> Option<f64> {
+        if p0 <= 0.0 {
+            return Some(z0);
+        }
+        if self.p.f_suc <= 0.0 {
+            // B = P0 > 0, so P5 = P0·(1 − h) > 0 for every finite uplift.
+            return None;
+        }
+        let pu0 = self.pu(z0).0;
+        let unit = 1.0 / self.k;
+        let mut step = 1e-3 * unit;
+        let mut hi = z0; // P5(hi) > 0
+        loop {
+            if hi <= 0.0 {
+                return None;
+            }
+            let lo = (hi - step).max(0.0);
+            if lo > 0.0 && self.p5(z0, p0, pu0, lo).0 <= 0.0 {
+                // Bisect [lo, hi]: P5(lo) <= 0 < P5(hi).
+                let (mut a, mut b) = (lo, hi);
+                for _ in 0..200 {
+                    let m = 0.5 * (a + b);
+                    if m <= a || m >= b {
+                        break;
+                    }
+                    if self.p5(z0, p0, pu0, m).0 <= 0.0 {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                return Some(b);
+            }
+            hi = lo;
+            step = (step * 2.0).min(0.25 * unit);
+        }
+    }
+
+    /// Uplift from the episode start `(z0, p0)`: `P = max(P5, P_min)` and its tangent.
+    /// Returns `(P, dP/dz, branch, z_P0,eff)`.
+    fn uplift(
+        &self,
+        z0: f64,
+        p0: f64,
+        z_c: Option<f64>,
+        z_p0: f64,
+        z_max: f64,
+        z: f64,
+    ) -> (f64, f64, Branch, f64) {
+        let pu0 = self.pu(z0).0;
+        let (p5, dp5) = self.p5(z0, p0, pu0, z);
+        let z_p0_eff = match z_c {
+            Some(zc) if z <= zc => z_p0.max(zc),
+            _ => z_p0,
+        };
+        let z_max_eff = z_max.max(z0).max(z);
+        let scale = self.p.lambda_suc * z_max_eff;
+        let x = (z - z_p0_eff) / scale;
+        let (e, de) = if x < 0.0 {
+            let e = x.exp();
+            (e, e / scale)
+        } else {
+            (1.0, 0.0)
+        };
+        let (pu, dpu) = self.pu(z);
+        let fsuc = self.p.f_suc;
+        let pmin = -e * fsuc * pu;
+        let dpmin = -(de * pu + e * dpu) * fsuc;
+        let (mut p, mut dp, mut branch) = if p5 >= pmin {
+            (p5, dp5, Branch::Uplift)
+        } else {
+            (pmin, dpmin, Branch::SuctionFloor)
+        };
+        if self.p.liftoff_smoothing {
+            let (pip, dpip) = self.p_ip(z);
+            if p > pip {
+                (p, dp, branch) = (pip, dpip, Branch::LiftoffSmoothing);
+            }
+        }
+        (p, dp, branch, z_p0_eff)
+    }
+
+    /// Repenetration from the episode start `(z0, p0)` with the preceding uplift's `z*`:
+    /// `P = min(P10, P_max)` (or the held `P0`) and its tangent.
+    fn repenetration(
+        &self,
+        z0: f64,
+        p0: f64,
+        z_star: Option<f64>,
+        z_p0: f64,
+        z_max: f64,
+        z: f64,
+    ) -> (f64, f64, Branch) {
+        let (pu, dpu) = self.pu(z);
+        let (pus, dpus) = match z_star {
+            Some(zs) if p0 > 0.0 => (self.pu(zs).0, 0.0),
+            _ => (pu, dpu),
+        };
+        let c = pu - p0;
+        let dc = dpu;
+        let (p10, dp10) = if pus > 0.0 && c > 0.0 {
+            let a = c / pus;
+            let da = dc / pus - c * dpus / (pus * pus);
+            let u = self.k * (z - z0);
+            let du = self.k;
+            let den = a + u;
+            let h = u / den;
+            let dh = (a * du - u * da) / (den * den);
+            (p0 + h * c, dh * c + h * dc)
+        } else {
+            (pu, dpu)
+        };
+        let m = z_max.max(z);
+        let lsuc = self.p.lambda_suc;
+        let x = (z - z_p0) / (lsuc * m) - self.p.lambda_rep;
+        let (e, de) = if x < 0.0 {
+            let dx = if z > z_max {
+                z_p0 / (lsuc * z * z)
+            } else {
+                1.0 / (lsuc * m)
+            };
+            let e = x.exp();
+            (e, e * dx)
+        } else {
+            (1.0, 0.0)
+        };
+        let (pip, dpip) = self.p_ip(z);
+        let pmax = e * pip;
+        let dpmax = de * pip + e * dpip;
+        let (cap, dcap, cap_branch) = if p0 > pmax {
+            (p0, 0.0, Branch::RepenetrationHold)
+        } else {
+            (pmax, dpmax, Branch::RepenetrationCap)
+        };
+        if p10 <= cap {
+            (p10, dp10, Branch::Repenetration)
+        } else {
+            (cap, dcap, cap_branch)
+        }
+    }
+
+    /// A trial at penetration `z` from the committed history `h`. Pure: `h` is not touched; the
+    /// history to commit, if the step converges, is in the result.
+    ///
+    /// Transitions, judged against the committed `z_prev`:
+    /// - NotInContact: `z ≤ 0` stays; `z > 0` goes to Initial Penetration if never contacted, else to
+    ///   Repenetration from `z0 = 0, P0 = 0, z* = none`;
+    /// - Initial Penetration or Repenetration: `z < z_prev` starts an uplift at `(z_prev, P_prev)`;
+    ///   if also `z ≤ 0`, that uplift ends in lift-off within the same step;
+    /// - Uplift: `z > z_prev` starts a repenetration at `(z_prev, P_prev)` with `z* = z0`;
+    ///   `z ≤ 0` is lift-off, recording `z_P0 = max(z_P0, z_c)`;
+    /// - `z == z_prev` keeps the mode.
+    pub fn evaluate(&self, h: &RqHistory, z: f64) -> RqTrial {
+        match h.mode {
+            Mode::NotInContact => {
+                if z <= 0.0 {
+                    self.lift_off(h, h.z_p0, z)
+                } else if !h.contacted {
+                    self.backbone(h, z)
+                } else {
+                    self.repen_trial(h, 0.0, 0.0, None, z)
+                }
+            }
+            Mode::InitialPenetration | Mode::Repenetration => {
+                if z < h.z_prev {
+                    let z_c = self.suction_onset(h.z_prev, h.p_prev);
+                    if z <= 0.0 {
+                        let z_p0 = z_c.map_or(h.z_p0, |zc| h.z_p0.max(zc));
+                        self.lift_off(h, z_p0, z)
+                    } else {
+                        self.uplift_trial(h, h.z_prev, h.p_prev, z_c, z)
+                    }
+                } else if h.mode == Mode::InitialPenetration {
+                    self.backbone(h, z)
+                } else {
+                    self.repen_trial(h, h.z0, h.p0, h.z_star, z)
+                }
+            }
+            Mode::Uplift => {
+                if z > h.z_prev {
+                    self.repen_trial(h, h.z_prev, h.p_prev, Some(h.z0), z)
+                } else if z <= 0.0 {
+                    let z_p0 = h.z_c.map_or(h.z_p0, |zc| h.z_p0.max(zc));
+                    self.lift_off(h, z_p0, z)
+                } else {
+                    self.uplift_trial(h, h.z0, h.p0, h.z_c, z)
+                }
+            }
+        }
+    }
+
+    fn lift_off(&self, h: &RqHistory, z_p0: f64, z: f64) -> RqTrial {
+        RqTrial {
+            p: 0.0,
+            tangent: 0.0,
+            branch: Branch::NoContact,
+            next: RqHistory {
+                mode: Mode::NotInContact,
+                z_prev: z,
+                p_prev: 0.0,
+                z0: 0.0,
+                p0: 0.0,
+                z_star: None,
+                z_c: None,
+                z_max: h.z_max,
+                z_p0,
+                contacted: h.contacted,
+            },
+        }
+    }
+
+    fn backbone(&self, h: &RqHistory, z: f64) -> RqTrial {
+        let (p, tangent) = self.p_ip(z);
+        RqTrial {
+            p,
+            tangent,
+            branch: Branch::Backbone,
+            next: RqHistory {
+                mode: Mode::InitialPenetration,
+                z_prev: z,
+                p_prev: p,
+                z0: 0.0,
+                p0: 0.0,
+                z_star: None,
+                z_c: None,
+                z_max: h.z_max.max(z),
+                z_p0: h.z_p0,
+                contacted: true,
+            },
+        }
+    }
+
+    fn uplift_trial(&self, h: &RqHistory, z0: f64, p0: f64, z_c: Option<f64>, z: f64) -> RqTrial {
+        let (p, tangent, branch, z_p0) = self.uplift(z0, p0, z_c, h.z_p0, h.z_max, z);
+        RqTrial {
+            p,
+            tangent,
+            branch,
+            next: RqHistory {
+                mode: Mode::Uplift,
+                z_prev: z,
+                p_prev: p,
+                z0,
+                p0,
+                z_star: Some(z0),
+                z_c,
+                z_max: h.z_max.max(z),
+                z_p0,
+                contacted: true,
+            },
+        }
+    }
+
+    fn repen_trial(&self, h: &RqHistory, z0: f64, p0: f64, z_star: Option<f64>, z: f64) -> RqTrial {
+        let (p, tangent, branch) = self.repenetration(z0, p0, z_star, h.z_p0, h.z_max, z);
+        RqTrial {
+            p,
+            tangent,
+            branch,
+            next: RqHistory {
+                mode: Mode::Repenetration,
+                z_prev: z,
+                p_prev: p,
+                z0,
+                p0,
+                z_star,
+                z_c: None,
+                z_max: h.z_max.max(z),
+                z_p0: h.z_p0,
+                contacted: true,
+            },
+        }
+    }
+}
