@@ -1,1 +1,59 @@
-fn main() {}
+//! `catena`: 2D finite-element dynamics of steel catenary risers and pipelines on a hysteretic seabed.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// catena: riser and pipeline dynamics on a Randolph–Quiggin seabed (SI units throughout).
+#[derive(Debug, Parser)]
+#[command(name = "catena", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Soil element test: the seabed law alone on one pipe segment, under displacement or load
+    /// control. Writes RESULT.csv and, unless --no-plot, a PNG plot beside it.
+    SoilTest {
+        /// The case file (TOML with [seabed] and [test] tables).
+        case: PathBuf,
+        /// The CSV file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// The PNG plot to write (default: RESULT.png beside the CSV).
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// Do not draw the plot.
+        #[arg(long, conflicts_with = "plot")]
+        no_plot: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::SoilTest {
+            case,
+            out,
+            plot,
+            no_plot,
+        } => {
+            let plot = if no_plot {
+                None
+            } else {
+                Some(plot.unwrap_or_else(|| out.with_extension("png")))
+            };
+            catena::soil_test::command(&case, &out, plot.as_deref()).map(|r| print!("{}", r.text))
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

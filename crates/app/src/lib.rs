@@ -1,0 +1,13 @@
+//! The `catena` command-line program, as a library so that its commands can be tested.
+//!
+//! - [`scene`]: reading TOML case files into validated models, with errors that name the file and key;
+//! - [`soil_test`]: `catena soil-test`, the seabed law alone on one pipe segment;
+//! - [`plot`]: PNG plots (plotters, with an embedded DejaVu Sans font so no system font is needed);
+//! - [`error`]: the program's error type.
+
+pub mod error;
+pub mod plot;
+pub mod scene;
+pub mod soil_test;
+
+pub use error::AppError;

@@ -1,0 +1,210 @@
+//! PNG plots, drawn with plotters. The font (DejaVu Sans, Bitstream Vera licence, `assets/`) is
+//! embedded in the binary, so plots need nothing from the system.
+
+use std::path::Path;
+use std::sync::Once;
+
+use catena_seabed::element_test::TestResult;
+use catena_seabed::law::Law;
+use catena_seabed::rq::Mode;
+use plotters::prelude::*;
+
+use crate::error::AppError;
+use crate::soil_test::SoilTestCase;
+
+static FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
+static INIT: Once = Once::new();
+
+/// Registers the embedded font under the name `sans-serif` (once).
+pub fn init_fonts() {
+    INIT.call_once(|| {
+        // The font is embedded and valid; a failure would only mean text is not drawn.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// The colour of a contact mode (the paper's Figure 2: blue backbone, green uplift, purple
+/// repenetration; grey out of contact).
+pub fn mode_colour(m: Mode) -> RGBColor {
+    match m {
+        Mode::NotInContact => RGBColor(140, 140, 140),
+        Mode::InitialPenetration => RGBColor(20, 90, 200),
+        Mode::Uplift => RGBColor(20, 150, 40),
+        Mode::Repenetration => RGBColor(150, 30, 170),
+    }
+}
+
+pub(crate) fn plot_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> AppError + '_ {
+    move |e| AppError::Plot {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
+}
+
+/// Pads a range by 5 % on each side (and widens an empty one).
+pub fn padded(lo: f64, hi: f64) -> (f64, f64) {
+    let span = (hi - lo)
+        .abs()
+        .max(1e-9 * hi.abs().max(lo.abs()).max(1e-12));
+    (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+/// The soil test plot: P/D against z/D (penetration down), coloured by mode, with the `Pu` and
+/// `−fsuc·Pu` asymptotes dashed; and, if the test has cycles, the cumulative penetration per cycle.
+pub fn soil_test(
+    path: &Path,
+    case: &SoilTestCase,
+    r: &TestResult,
+    cycles: &[(usize, f64)],
+    z_start: f64,
+) -> Result<(), AppError> {
+    init_fonts();
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| AppError::io(dir, e))?;
+    }
+    let err = plot_err(path);
+    let d = case.seabed.diameter();
+    let width = if cycles.is_empty() { 900 } else { 1600 };
+    let root = BitMapBackend::new(path, (width, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let (left, right) = if cycles.is_empty() {
+        (root.clone(), None)
+    } else {
+        let (l, r) = root.split_horizontally(900);
+        (l, Some(r))
+    };
+
+    let z_lo = r.rows.iter().map(|row| row.z).fold(0.0f64, f64::min);
+    let z_hi = r
+        .rows
+        .iter()
+        .map(|row| row.z)
+        .fold(0.0f64, f64::max)
+        .max(1e-9);
+    let mut asym: Vec<(Vec<(f64, f64)>, &str)> = Vec::new();
+    if let Law::RandolphQuiggin(rq) = &case.seabed.law {
+        let n = 400;
+        let zs: Vec<f64> = (0..=n).map(|i| z_hi * i as f64 / n as f64).collect();
+        let pu: Vec<(f64, f64)> = zs.iter().map(|&z| (rq.pu(z).0 / d / 1e3, -z / d)).collect();
+        let fsuc = rq.params().f_suc;
+        let psuc: Vec<(f64, f64)> = pu.iter().map(|&(p, y)| (-fsuc * p, y)).collect();
+        asym.push((pu, "Pu"));
+        asym.push((psuc, "-f_suc Pu"));
+    }
+    let p_lo = r
+        .rows
+        .iter()
+        .map(|row| row.p / d / 1e3)
+        .chain(asym.iter().flat_map(|(v, _)| v.iter().map(|p| p.0)))
+        .fold(0.0f64, f64::min);
+    let p_hi = r
+        .rows
+        .iter()
+        .map(|row| row.p / d / 1e3)
+        .chain(asym.iter().flat_map(|(v, _)| v.iter().map(|p| p.0)))
+        .fold(0.0f64, f64::max);
+    let (x0, x1) = padded(p_lo, p_hi);
+    let (y0, y1) = padded(-z_hi / d, -z_lo / d);
+    let title = Path::new(&case.file)
+        .file_stem()
+        .map_or_else(|| case.file.clone(), |s| s.to_string_lossy().into_owned());
+    let mut chart = ChartBuilder::on(&left)
+        .caption(
+            format!("{title}: soil resistance P/D against penetration"),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(&err)?;
+    chart
+        .configure_mesh()
+        .x_desc("P/D (kPa)  (positive: resistance, negative: suction)")
+        .y_desc("penetration z/D (down)")
+        .y_label_formatter(&|v| format!("{:.2}", -v + 0.0))
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(&err)?;
+    for (pts, label) in &asym {
+        chart
+            .draw_series(DashedLineSeries::new(
+                pts.iter().copied(),
+                6,
+                4,
+                RGBColor(120, 120, 120).stroke_width(1),
+            ))
+            .map_err(&err)?
+            .label(*label)
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120)));
+    }
+    let mut labelled = [false; 4];
+    let mut start = 0;
+    while start + 1 < r.rows.len() {
+        let mode = r.rows[start + 1].mode;
+        let mut end = start + 1;
+        while end + 1 < r.rows.len() && r.rows[end + 1].mode == mode {
+            end += 1;
+        }
+        let pts: Vec<(f64, f64)> = r.rows[start..=end]
+            .iter()
+            .map(|row| (row.p / d / 1e3, -row.z / d))
+            .collect();
+        let colour = mode_colour(mode);
+        let series = chart
+            .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+            .map_err(&err)?;
+        let k = mode.code() as usize;
+        if !labelled[k] {
+            labelled[k] = true;
+            series.label(mode.name()).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+        }
+        start = end;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 15))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(&err)?;
+
+    if let Some(right) = right {
+        let pts: Vec<(f64, f64)> = cycles
+            .iter()
+            .map(|&(c, z)| (c as f64, (z - z_start) / d))
+            .collect();
+        let n = cycles.len() as f64;
+        let y_hi = pts.iter().map(|p| p.1).fold(0.0f64, f64::max);
+        let y_lo = pts.iter().map(|p| p.1).fold(0.0f64, f64::min);
+        let (ya, yb) = padded(y_lo, y_hi);
+        let mut c2 = ChartBuilder::on(&right)
+            .caption("penetration at the end of each cycle", ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0.0..n + 1.0, ya..yb)
+            .map_err(&err)?;
+        c2.configure_mesh()
+            .x_desc("cycle")
+            .y_desc("cumulative penetration since the first cycle, Δz/D")
+            .label_style(("sans-serif", 16))
+            .draw()
+            .map_err(&err)?;
+        c2.draw_series(LineSeries::new(
+            pts.iter().copied(),
+            mode_colour(Mode::Repenetration).stroke_width(2),
+        ))
+        .map_err(&err)?;
+        c2.draw_series(
+            pts.iter()
+                .map(|&p| Circle::new(p, 3, mode_colour(Mode::Repenetration).filled())),
+        )
+        .map_err(&err)?;
+    }
+    root.present().map_err(&err)?;
+    Ok(())
+}

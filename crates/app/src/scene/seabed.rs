@@ -1,0 +1,207 @@
+//! The `[seabed]` table, shared by every kind of case.
+//!
+//! | key | unit | default | meaning |
+//! |---|---|---|---|
+//! | `model` | — | required | `"linear"` or `"randolph-quiggin"` |
+//! | `diameter` | m | required in soil tests; the riser's outer diameter in riser scenes | contact diameter `D` |
+//! | `stiffness` | N/m/m² | required (linear) | stiffness per unit contact area, `P = k·D·z` |
+//! | `damping` | N·s/m/m² | 0 (linear) | damping per unit contact area |
+//! | `su0` | Pa | required (R–Q) | undrained shear strength at the mudline |
+//! | `su_gradient` | Pa/m | required (R–Q) | strength gradient |
+//! | `a`, `b` | — | required (R–Q) | bearing factor `Nc = a·(z/D)^b` |
+//! | `k_max` | — | required (R–Q) | normalised maximum stiffness |
+//! | `f_suc` | — | required (R–Q) | suction ratio, in [0, 1] |
+//! | `lambda_suc` | — | required (R–Q) | suction decay distance |
+//! | `lambda_rep` | — | required (R–Q) | repenetration offset |
+//! | `liftoff_smoothing` | — | false (R–Q) | cap uplift `P` by `P_IP` |
+//! | `f_b`, `soil_density`, `water_density` | —, kg/m³, kg/m³ | none | soil buoyancy (eq. 15): all three or none |
+
+use catena_seabed::law::{Law, Seabed};
+use catena_seabed::{LinearSeabed, ParamError, RandolphQuiggin, RqParams, SoilBuoyancy};
+use serde::Deserialize;
+
+use super::{invalid, required};
+use crate::error::SceneError;
+
+/// The seabed model a scene chose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SeabedModel {
+    /// Linear elastic, tensionless.
+    Linear,
+    /// Randolph & Quiggin (2009).
+    RandolphQuiggin,
+}
+
+/// The `[seabed]` table as written.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SeabedTable {
+    pub model: Option<SeabedModel>,
+    pub diameter: Option<f64>,
+    pub stiffness: Option<f64>,
+    pub damping: Option<f64>,
+    pub su0: Option<f64>,
+    pub su_gradient: Option<f64>,
+    pub a: Option<f64>,
+    pub b: Option<f64>,
+    pub k_max: Option<f64>,
+    pub f_suc: Option<f64>,
+    pub lambda_suc: Option<f64>,
+    pub lambda_rep: Option<f64>,
+    pub liftoff_smoothing: Option<bool>,
+    pub f_b: Option<f64>,
+    pub soil_density: Option<f64>,
+    pub water_density: Option<f64>,
+}
+
+fn param_error(file: &str, table: &str, e: ParamError) -> SceneError {
+    invalid(
+        file,
+        format!("{table}.{}", e.key),
+        format!("{} (got {})", e.expected, e.value),
+    )
+}
+
+impl SeabedTable {
+    /// Builds the seabed. `table` is the table's name in the file (for messages); `default_diameter`
+    /// and `default_water_density` fill keys a riser scene knows from elsewhere.
+    pub fn build(
+        &self,
+        file: &str,
+        table: &str,
+        default_diameter: Option<f64>,
+        default_water_density: Option<f64>,
+    ) -> Result<Seabed, SceneError> {
+        let key = |k: &str| format!("{table}.{k}");
+        let model = required(
+            file,
+            &key("model"),
+            self.model,
+            "\"linear\" or \"randolph-quiggin\"",
+        )?;
+        let diameter = required(
+            file,
+            &key("diameter"),
+            self.diameter.or(default_diameter),
+            "the contact diameter in m",
+        )?;
+        let linear_keys = [("stiffness", self.stiffness), ("damping", self.damping)];
+        let rq_keys = [
+            ("su0", self.su0),
+            ("su_gradient", self.su_gradient),
+            ("a", self.a),
+            ("b", self.b),
+            ("k_max", self.k_max),
+            ("f_suc", self.f_suc),
+            ("lambda_suc", self.lambda_suc),
+            ("lambda_rep", self.lambda_rep),
+        ];
+        let law = match model {
+            SeabedModel::Linear => {
+                let stray = rq_keys
+                    .iter()
+                    .map(|(k, v)| (*k, v.is_some()))
+                    .chain([("liftoff_smoothing", self.liftoff_smoothing.is_some())]);
+                reject_stray(file, table, "linear", stray)?;
+                let stiffness = required(
+                    file,
+                    &key("stiffness"),
+                    self.stiffness,
+                    "the stiffness per unit contact area in N/m/m²",
+                )?;
+                Law::Linear(
+                    LinearSeabed::new(diameter, stiffness, self.damping.unwrap_or(0.0))
+                        .map_err(|e| param_error(file, table, e))?,
+                )
+            }
+            SeabedModel::RandolphQuiggin => {
+                reject_stray(
+                    file,
+                    table,
+                    "randolph-quiggin",
+                    linear_keys.iter().map(|(k, v)| (*k, v.is_some())),
+                )?;
+                let get = |k: &str, v: Option<f64>, what: &str| required(file, &key(k), v, what);
+                let p = RqParams {
+                    diameter,
+                    su0: get("su0", self.su0, "the mudline strength in Pa")?,
+                    su_gradient: get(
+                        "su_gradient",
+                        self.su_gradient,
+                        "the strength gradient in Pa/m",
+                    )?,
+                    a: get("a", self.a, "the bearing-factor coefficient a")?,
+                    b: get("b", self.b, "the bearing-factor exponent b")?,
+                    k_max: get("k_max", self.k_max, "the normalised maximum stiffness")?,
+                    f_suc: get("f_suc", self.f_suc, "the suction ratio in [0, 1]")?,
+                    lambda_suc: get("lambda_suc", self.lambda_suc, "the suction decay distance")?,
+                    lambda_rep: get("lambda_rep", self.lambda_rep, "the repenetration offset")?,
+                    liftoff_smoothing: self.liftoff_smoothing.unwrap_or(false),
+                };
+                Law::RandolphQuiggin(
+                    RandolphQuiggin::new(p).map_err(|e| param_error(file, table, e))?,
+                )
+            }
+        };
+        let water = self.water_density.or(default_water_density);
+        let buoyancy = match (self.f_b, self.soil_density) {
+            (None, None) => {
+                if self.water_density.is_some() {
+                    return Err(invalid(
+                        file,
+                        key("water_density"),
+                        "f_b and soil_density as well (soil buoyancy needs all three), or none",
+                    ));
+                }
+                None
+            }
+            (Some(f_b), Some(soil)) => {
+                let water = required(
+                    file,
+                    &key("water_density"),
+                    water,
+                    "the water density in kg/m³ (soil buoyancy needs f_b, soil_density and water_density)",
+                )?;
+                Some(
+                    SoilBuoyancy::new(diameter, f_b, soil, water)
+                        .map_err(|e| param_error(file, table, e))?,
+                )
+            }
+            (Some(_), None) => {
+                return Err(invalid(
+                    file,
+                    key("soil_density"),
+                    "the saturated soil density in kg/m³ (soil buoyancy needs f_b, soil_density and water_density)",
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(invalid(
+                    file,
+                    key("f_b"),
+                    "the soil buoyancy factor (soil buoyancy needs f_b, soil_density and water_density)",
+                ))
+            }
+        };
+        Ok(Seabed { law, buoyancy })
+    }
+}
+
+fn reject_stray(
+    file: &str,
+    table: &str,
+    model: &str,
+    keys: impl Iterator<Item = (&'static str, bool)>,
+) -> Result<(), SceneError> {
+    for (k, present) in keys {
+        if present {
+            return Err(invalid(
+                file,
+                format!("{table}.{k}"),
+                format!("no such key for model = \"{model}\" (remove it, or change the model)"),
+            ));
+        }
+    }
+    Ok(())
+}

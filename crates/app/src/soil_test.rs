@@ -1,0 +1,379 @@
+//! `catena soil-test CASE.toml --out RESULT.csv`: the seabed law alone, on one pipe segment.
+//!
+//! The case file has a `[seabed]` table (see [`crate::scene::seabed`]) and a `[test]` table:
+//!
+//! | key | unit | default | meaning |
+//! |---|---|---|---|
+//! | `control` | — | required | `"displacement"` (waypoints are `z`, m) or `"load"` (total force `P + F_b`, N/m) |
+//! | `waypoints` | m or N/m | required, not empty | targets of successive legs, from `z = 0` |
+//! | `step` | m or N/m | required, > 0 | largest increment; a leg is split in `ceil(|Δ|/step)` equal increments |
+//! | `cycles` | — | none | cycles appended after the waypoints (below) |
+//!
+//! Each entry of `[[test.cycles]]` has `count` (≥ 1) and `legs`, a list of
+//! `{ control = "displacement" | "load", to = value }` or `{ control = ..., by = change }`, with an
+//! optional `step` (default: `test.step` when the control is `test.control`; required otherwise).
+//! The cycle's legs are repeated `count` times.
+//!
+//! The CSV has a header, a row for the initial state and one row per committed increment, with the
+//! columns `step, leg, cycle, z, P, buoyancy, total, tangent, mode, branch` (SI units: m, N/m, N/m²).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use catena_seabed::element_test::{self, Control, Leg, Target, TestError, TestResult};
+use catena_seabed::law::{Law, Seabed};
+use serde::Deserialize;
+
+use crate::error::{AppError, SceneError};
+use crate::scene::{self, invalid, seabed::SeabedTable};
+
+/// The control mode as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ControlKey {
+    /// Penetration control.
+    Displacement,
+    /// Total force control.
+    Load,
+}
+
+impl From<ControlKey> for Control {
+    fn from(c: ControlKey) -> Self {
+        match c {
+            ControlKey::Displacement => Control::Displacement,
+            ControlKey::Load => Control::Load,
+        }
+    }
+}
+
+/// A leg of a cycle as written.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct LegTable {
+    pub control: Option<ControlKey>,
+    pub to: Option<f64>,
+    pub by: Option<f64>,
+    pub step: Option<f64>,
+}
+
+/// A `[[test.cycles]]` entry.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct CycleTable {
+    pub count: i64,
+    pub legs: Vec<LegTable>,
+}
+
+/// The `[test]` table.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct TestTable {
+    pub control: ControlKey,
+    pub waypoints: Vec<f64>,
+    pub step: f64,
+    #[serde(default)]
+    pub cycles: Vec<CycleTable>,
+}
+
+/// A soil-test case file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SoilTestFile {
+    pub seabed: SeabedTable,
+    pub test: TestTable,
+}
+
+/// A soil-test case, read and checked.
+#[derive(Debug, Clone)]
+pub struct SoilTestCase {
+    /// The case file, as given.
+    pub file: String,
+    /// The seabed.
+    pub seabed: Seabed,
+    /// The legs, in order.
+    pub legs: Vec<Leg>,
+    /// Where each leg comes from in the file (`test.waypoints[2]`), for messages.
+    pub origins: Vec<String>,
+    /// For each leg, the cycle it belongs to (counted from 1 over all cycle tables), or 0.
+    pub cycle_of_leg: Vec<usize>,
+}
+
+impl SoilTestCase {
+    /// Reads and checks a case file.
+    pub fn read(path: &Path) -> Result<Self, AppError> {
+        let text = scene::read_text(path)?;
+        Ok(Self::parse(&path.display().to_string(), &text)?)
+    }
+
+    /// Parses and checks case text (`file` is used in messages).
+    pub fn parse(file: &str, text: &str) -> Result<Self, SceneError> {
+        let raw: SoilTestFile = scene::parse(file, text)?;
+        let seabed = raw.seabed.build(file, "seabed", None, None)?;
+        let t = &raw.test;
+        if t.waypoints.is_empty() {
+            return Err(invalid(file, "test.waypoints", "at least one waypoint"));
+        }
+        if let Some(i) = t.waypoints.iter().position(|w| !w.is_finite()) {
+            return Err(invalid(
+                file,
+                format!("test.waypoints[{i}]"),
+                "a finite number",
+            ));
+        }
+        if !(t.step.is_finite() && t.step > 0.0) {
+            return Err(invalid(
+                file,
+                "test.step",
+                format!("a finite step > 0 (got {})", t.step),
+            ));
+        }
+        let mut legs = element_test::legs_through(t.control.into(), &t.waypoints, t.step);
+        let mut origins: Vec<String> = (0..legs.len())
+            .map(|i| format!("test.waypoints[{i}]"))
+            .collect();
+        let mut cycle_of_leg = vec![0; legs.len()];
+        let mut cycle_no = 0;
+        for (ci, c) in t.cycles.iter().enumerate() {
+            let ck = format!("test.cycles[{ci}]");
+            if c.count < 1 {
+                return Err(invalid(
+                    file,
+                    format!("{ck}.count"),
+                    format!("a count >= 1 (got {})", c.count),
+                ));
+            }
+            if c.legs.is_empty() {
+                return Err(invalid(file, format!("{ck}.legs"), "at least one leg"));
+            }
+            let mut cycle_legs = Vec::with_capacity(c.legs.len());
+            for (li, l) in c.legs.iter().enumerate() {
+                let lk = format!("{ck}.legs[{li}]");
+                let control = l.control.unwrap_or(t.control);
+                let target = match (l.to, l.by) {
+                    (Some(v), None) => Target::To(v),
+                    (None, Some(v)) => Target::By(v),
+                    _ => {
+                        return Err(invalid(
+                            file,
+                            lk,
+                            "exactly one of `to` (a target) or `by` (a change)",
+                        ))
+                    }
+                };
+                let (Target::To(v) | Target::By(v)) = target;
+                if !v.is_finite() {
+                    return Err(invalid(file, lk, "a finite target"));
+                }
+                let step = match l.step {
+                    Some(s) => s,
+                    None if control == t.control => t.step,
+                    None => {
+                        return Err(invalid(
+                            file,
+                            format!("{lk}.step"),
+                            "a step for this leg (its control differs from test.control)",
+                        ))
+                    }
+                };
+                if !(step.is_finite() && step > 0.0) {
+                    return Err(invalid(
+                        file,
+                        format!("{lk}.step"),
+                        format!("a finite step > 0 (got {step})"),
+                    ));
+                }
+                cycle_legs.push((
+                    Leg {
+                        control: control.into(),
+                        target,
+                        step,
+                    },
+                    lk,
+                ));
+            }
+            for _ in 0..c.count {
+                cycle_no += 1;
+                for (leg, lk) in &cycle_legs {
+                    legs.push(*leg);
+                    origins.push(format!("{lk} (cycle {cycle_no})"));
+                    cycle_of_leg.push(cycle_no);
+                }
+            }
+        }
+        Ok(Self {
+            file: file.to_string(),
+            seabed,
+            legs,
+            origins,
+            cycle_of_leg,
+        })
+    }
+
+    /// Runs the test.
+    pub fn run(&self) -> Result<TestResult, AppError> {
+        element_test::run(&self.seabed, &self.legs).map_err(|e| match e {
+            TestError::LoadNotCarried { leg, .. }
+            | TestError::BadStep { leg, .. }
+            | TestError::BadTarget { leg, .. } => AppError::Run {
+                file: self.file.clone(),
+                message: format!("key `{}`: {e}", self.origins[leg - 1]),
+            },
+            TestError::Empty => AppError::Run {
+                file: self.file.clone(),
+                message: format!("key `test.waypoints`: {e}"),
+            },
+        })
+    }
+
+    /// The penetration at the end of each cycle: `(cycle, z)`.
+    pub fn cycle_ends(&self, r: &TestResult) -> Vec<(usize, f64)> {
+        let mut out: Vec<(usize, f64)> = Vec::new();
+        for (li, &c) in self.cycle_of_leg.iter().enumerate() {
+            if c == 0 {
+                continue;
+            }
+            let z = r.rows[r.leg_ends[li]].z;
+            match out.last_mut() {
+                Some(last) if last.0 == c => last.1 = z,
+                _ => out.push((c, z)),
+            }
+        }
+        out
+    }
+
+    /// The penetration when the cycles start (the end of the waypoint legs).
+    pub fn start_of_cycles(&self, r: &TestResult) -> f64 {
+        let n = self.cycle_of_leg.iter().take_while(|&&c| c == 0).count();
+        if n == 0 {
+            0.0
+        } else {
+            r.rows[r.leg_ends[n - 1]].z
+        }
+    }
+}
+
+/// Writes the CSV of a test.
+pub fn write_csv(path: &Path, case: &SoilTestCase, r: &TestResult) -> Result<(), AppError> {
+    let mut s = String::with_capacity(r.rows.len() * 120);
+    s.push_str("step,leg,cycle,z,P,buoyancy,total,tangent,mode,branch\n");
+    for row in &r.rows {
+        let cycle = if row.leg == 0 {
+            0
+        } else {
+            case.cycle_of_leg[row.leg - 1]
+        };
+        let branch = serde_json::to_value(row.branch)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{}",
+            row.step,
+            row.leg,
+            cycle,
+            row.z,
+            row.p,
+            row.buoyancy,
+            row.total,
+            row.tangent,
+            row.mode.name(),
+            branch
+        );
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| AppError::io(dir, e))?;
+    }
+    std::fs::write(path, s).map_err(|e| AppError::io(path, e))
+}
+
+/// What the command prints and returns.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// Text for the terminal.
+    pub text: String,
+    /// The plot written, if any.
+    pub plot: Option<PathBuf>,
+}
+
+/// The whole command: read, run, write CSV and plot, and summarise.
+pub fn command(case_path: &Path, out: &Path, plot: Option<&Path>) -> Result<Report, AppError> {
+    let case = SoilTestCase::read(case_path)?;
+    let r = case.run()?;
+    write_csv(out, &case, &r)?;
+    let cycles = case.cycle_ends(&r);
+    let z_start = case.start_of_cycles(&r);
+    if let Some(p) = plot {
+        crate::plot::soil_test(p, &case, &r, &cycles, z_start)?;
+    }
+    let d = case.seabed.diameter();
+    let mut text = String::new();
+    let last = r.rows.last().map_or(0.0, |row| row.z);
+    let _ = writeln!(text, "soil test {}", case.file);
+    let _ = writeln!(
+        text,
+        "  model: {}, D = {d} m; {} legs, {} committed increments",
+        match case.seabed.law {
+            Law::Linear(_) => "linear",
+            Law::RandolphQuiggin(_) => "randolph-quiggin",
+        },
+        case.legs.len(),
+        r.rows.len() - 1
+    );
+    for (i, &e) in r
+        .leg_ends
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| case.cycle_of_leg[*i] == 0)
+    {
+        let row = &r.rows[e];
+        let _ = writeln!(
+            text,
+            "  end of leg {:>3}: z = {:.6} m (z/D = {:.4}), P = {:.3} N/m (P/D = {:.3} kPa), mode {}",
+            i + 1,
+            row.z,
+            row.z / d,
+            row.p,
+            row.p / d / 1000.0,
+            row.mode.name()
+        );
+    }
+    if !cycles.is_empty() {
+        let _ = writeln!(
+            text,
+            "  cycles start at z = {z_start:.6} m (z/D = {:.4}); penetration at the end of each cycle:",
+            z_start / d
+        );
+        let _ = writeln!(
+            text,
+            "  {:>6} {:>12} {:>12} {:>14} {:>14}",
+            "cycle", "z (m)", "z/D", "dz/D (cycle)", "(z-2D)/D"
+        );
+        let mut prev = z_start;
+        for &(c, z) in &cycles {
+            let show = c <= 3 || c % 10 == 0 || c == cycles.len();
+            if show {
+                let _ = writeln!(
+                    text,
+                    "  {c:>6} {z:>12.6} {:>12.5} {:>14.6} {:>14.5}",
+                    z / d,
+                    (z - prev) / d,
+                    (z - 2.0 * d) / d
+                );
+            }
+            prev = z;
+        }
+    }
+    let _ = writeln!(text, "  final z = {last:.6} m; wrote {}", out.display());
+    if let Some(p) = plot {
+        let _ = writeln!(text, "  plot {}", p.display());
+    }
+    Ok(Report {
+        text,
+        plot: plot.map(Path::to_path_buf),
+    })
+}
