@@ -82,14 +82,36 @@ pub fn corotational_beam(
     sec: &Section,
     with_stiffness: bool,
 ) -> BeamResponse {
-    let dx = d[3] - d[0];
-    let dz = d[4] - d[1];
+    corotational_beam_chord(
+        d[3] - d[0],
+        d[4] - d[1],
+        d[2],
+        d[5],
+        l0,
+        sec,
+        with_stiffness,
+    )
+}
+
+/// The element response from the chord `(dx, dz) = (x2 − x1, z2 − z1)` and the end angles. The
+/// element depends on nothing else (a rigid translation changes nothing), so a solver that keeps
+/// positions as a fixed base plus a displacement can pass the chord at full precision.
+#[inline]
+pub fn corotational_beam_chord(
+    dx: f64,
+    dz: f64,
+    theta1: f64,
+    theta2: f64,
+    l0: f64,
+    sec: &Section,
+    with_stiffness: bool,
+) -> BeamResponse {
     let l = (dx * dx + dz * dz).sqrt();
     let c = dx / l;
     let s = dz / l;
     let beta = dz.atan2(dx);
-    let t1 = wrap(d[2] - beta);
-    let t2 = wrap(d[5] - beta);
+    let t1 = wrap(theta1 - beta);
+    let t2 = wrap(theta2 - beta);
     let u = l - l0;
     let ka = sec.ea / l0;
     let kb = sec.ei / l0;

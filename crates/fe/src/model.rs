@@ -1,1 +1,250 @@
-//! model
+//! The Model: everything a case fixes for the run — mesh, sections, loads, supports and the optional
+//! effects (seabed, flexjoint). Built once by [`LineModel::build`], then immutable.
+//!
+//! A line is a chain of nodes numbered from the **top** (node 0) to the anchor; element `e` joins
+//! nodes `e` and `e + 1`. Each node has three degrees of freedom `(x, z, θ)`, global index
+//! `3·node + k`. The reference (stress-free) configuration is straight: element `e` has unstretched
+//! length `L0_e` and no natural curvature.
+//!
+//! Loads and contact (per unit **unstretched** length):
+//! - submerged weight `w`, lumped to the two end nodes of each element (`w·L0/2` each, downward);
+//! - seabed reaction at the nodes over their tributary length `(L0_left + L0_right)/2`, from the
+//!   penetration of the pipe invert `z_pen = z_mudline − (z − D/2)` (positive down);
+//! - flexjoint: a rotational spring `M = −k_θ (θ − θ_neutral)` at one node.
+
+use catena_seabed::law::Seabed;
+
+use crate::beam::Section;
+
+/// A length of line with one cross-section and one element length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// Unstretched length, m.
+    pub length: f64,
+    /// Target element length, m (the segment gets `ceil(length/element_length)` equal elements).
+    pub element_length: f64,
+    /// Axial and bending stiffness.
+    pub section: Section,
+    /// Submerged weight per unit length, N/m (positive down).
+    pub weight: f64,
+    /// Structural mass per unit length (steel and contents), kg/m.
+    pub mass: f64,
+    /// Outer (contact and hydrodynamic) diameter, m.
+    pub od: f64,
+}
+
+/// How an end of the line is held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Support {
+    /// Position prescribed, rotation free.
+    Pinned,
+    /// Position and rotation prescribed.
+    Fixed,
+}
+
+/// One element's properties.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Element {
+    /// Unstretched length, m.
+    pub l0: f64,
+    /// Stiffness.
+    pub section: Section,
+    /// Submerged weight, N/m.
+    pub weight: f64,
+    /// Mass, kg/m.
+    pub mass: f64,
+    /// Outer diameter, m.
+    pub od: f64,
+}
+
+/// The seabed under the line: a flat mudline at `z = mudline_z` and the contact law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeabedContact {
+    /// The law (and soil buoyancy).
+    pub seabed: Seabed,
+    /// Height of the mudline, m (0 in catena's cases).
+    pub mudline_z: f64,
+}
+
+/// A rotational spring at a node (a flexjoint).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexJoint {
+    /// The node.
+    pub node: usize,
+    /// Rotational stiffness, N·m/rad.
+    pub stiffness: f64,
+    /// The absolute tangent angle at which the joint carries no moment, rad.
+    pub neutral: f64,
+}
+
+/// What is needed to build a line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LineSpec {
+    /// Segments from the top to the anchor.
+    pub segments: Vec<Segment>,
+    /// The top end's support.
+    pub top: Support,
+    /// The anchor end's support.
+    pub anchor: Support,
+    /// The seabed, if any.
+    pub seabed: Option<SeabedContact>,
+    /// A flexjoint at the top, if any: `(stiffness, neutral angle)`; the neutral angle may be set
+    /// later by [`LineModel::set_flexjoint_neutral`].
+    pub flexjoint: Option<(f64, f64)>,
+}
+
+/// Why a line could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// No segment.
+    #[error("the line has no segment")]
+    Empty,
+    /// A segment with a bad number.
+    #[error("segment {index}: {what}")]
+    BadSegment {
+        /// Segment index (from 0, top first).
+        index: usize,
+        /// What is wrong.
+        what: &'static str,
+    },
+}
+
+/// The built Model of a line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LineModel {
+    /// Unstretched arc length from the top at each node, m.
+    pub arc: Vec<f64>,
+    /// Elements, top first.
+    pub elements: Vec<Element>,
+    /// Tributary (unstretched) length of each node, m.
+    pub tributary: Vec<f64>,
+    /// Contact diameter of each node (mean of the adjacent elements' ODs), m.
+    pub node_od: Vec<f64>,
+    /// For each global dof, its equation number, or `None` if prescribed.
+    pub equation: Vec<Option<usize>>,
+    /// Number of equations (free dofs).
+    pub n_eq: usize,
+    /// External dead loads (submerged weight), per global dof, N.
+    pub dead_load: Vec<f64>,
+    /// The seabed, if the case has one.
+    pub seabed: Option<SeabedContact>,
+    /// The flexjoint, if the case has one.
+    pub flexjoint: Option<FlexJoint>,
+    /// The supports (top, anchor).
+    pub supports: (Support, Support),
+}
+
+impl LineModel {
+    /// Meshes the segments and numbers the equations.
+    pub fn build(spec: &LineSpec) -> Result<Self, ModelError> {
+        if spec.segments.is_empty() {
+            return Err(ModelError::Empty);
+        }
+        let mut elements = Vec::new();
+        for (index, seg) in spec.segments.iter().enumerate() {
+            let bad = |what| Err(ModelError::BadSegment { index, what });
+            if !(seg.length > 0.0 && seg.length.is_finite()) {
+                return bad("length must be > 0");
+            }
+            if !(seg.element_length > 0.0 && seg.element_length.is_finite()) {
+                return bad("element length must be > 0");
+            }
+            if !(seg.section.ea > 0.0 && seg.section.ei > 0.0) {
+                return bad("EA and EI must be > 0");
+            }
+            if !seg.weight.is_finite() || !(seg.mass >= 0.0) || !(seg.od > 0.0) {
+                return bad("weight must be finite, mass >= 0 and OD > 0");
+            }
+            let n = (seg.length / seg.element_length).ceil().max(1.0) as usize;
+            let l0 = seg.length / n as f64;
+            for _ in 0..n {
+                elements.push(Element {
+                    l0,
+                    section: seg.section,
+                    weight: seg.weight,
+                    mass: seg.mass,
+                    od: seg.od,
+                });
+            }
+        }
+        let nn = elements.len() + 1;
+        let mut arc = vec![0.0; nn];
+        let mut tributary = vec![0.0; nn];
+        let mut node_od = vec![0.0; nn];
+        let mut dead_load = vec![0.0; 3 * nn];
+        for (e, el) in elements.iter().enumerate() {
+            arc[e + 1] = arc[e] + el.l0;
+            tributary[e] += 0.5 * el.l0;
+            tributary[e + 1] += 0.5 * el.l0;
+            node_od[e] += 0.5 * el.od;
+            node_od[e + 1] += 0.5 * el.od;
+            dead_load[3 * e + 1] -= 0.5 * el.weight * el.l0;
+            dead_load[3 * (e + 1) + 1] -= 0.5 * el.weight * el.l0;
+        }
+        node_od[0] = elements[0].od;
+        node_od[nn - 1] = elements[nn - 2].od;
+        let mut fixed = vec![false; 3 * nn];
+        for (node, sup) in [(0, spec.top), (nn - 1, spec.anchor)] {
+            fixed[3 * node] = true;
+            fixed[3 * node + 1] = true;
+            if sup == Support::Fixed {
+                fixed[3 * node + 2] = true;
+            }
+        }
+        let mut equation = vec![None; 3 * nn];
+        let mut n_eq = 0;
+        for (g, f) in fixed.iter().enumerate() {
+            if !f {
+                equation[g] = Some(n_eq);
+                n_eq += 1;
+            }
+        }
+        Ok(Self {
+            arc,
+            elements,
+            tributary,
+            node_od,
+            equation,
+            n_eq,
+            dead_load,
+            seabed: spec.seabed,
+            flexjoint: spec.flexjoint.map(|(stiffness, neutral)| FlexJoint {
+                node: 0,
+                stiffness,
+                neutral,
+            }),
+            supports: (spec.top, spec.anchor),
+        })
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        self.arc.len()
+    }
+
+    /// Total unstretched length, m.
+    pub fn length(&self) -> f64 {
+        self.arc.last().copied().unwrap_or(0.0)
+    }
+
+    /// Sets the flexjoint's neutral angle (e.g. to the static top angle, for zero static moment).
+    pub fn set_flexjoint_neutral(&mut self, neutral: f64) {
+        if let Some(fj) = &mut self.flexjoint {
+            fj.neutral = neutral;
+        }
+    }
+
+    /// The penetration of node `i`'s invert below the mudline at height `z` (positive down), or
+    /// `None` without a seabed.
+    #[inline]
+    pub fn penetration(&self, i: usize, z: f64) -> Option<f64> {
+        self.seabed
+            .as_ref()
+            .map(|s| s.mudline_z - (z - 0.5 * self.node_od[i]))
+    }
+
+    /// The mean submerged weight per unit length, N/m.
+    pub fn mean_weight(&self) -> f64 {
+        self.elements.iter().map(|e| e.weight * e.l0).sum::<f64>() / self.length()
+    }
+}
