@@ -2,12 +2,16 @@
 //!
 //! - [`scene`]: reading TOML case files into validated models, with errors that name the file and key;
 //! - [`soil_test`]: `catena soil-test`, the seabed law alone on one pipe segment;
+//! - [`statics_cmd`]: `catena static`, the static configuration of a line on the seabed;
+//! - [`h5`]: the HDF5 results layout;
 //! - [`plot`]: PNG plots (plotters, with an embedded DejaVu Sans font so no system font is needed);
 //! - [`error`]: the program's error type.
 
 pub mod error;
+pub mod h5;
 pub mod plot;
 pub mod scene;
 pub mod soil_test;
+pub mod statics_cmd;
 
 pub use error::AppError;

@@ -30,6 +30,15 @@ enum Command {
         #[arg(long, conflicts_with = "plot")]
         no_plot: bool,
     },
+    /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
+    /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
+    Static {
+        /// The scene file (TOML).
+        case: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -47,6 +56,9 @@ fn main() -> ExitCode {
                 Some(plot.unwrap_or_else(|| out.with_extension("png")))
             };
             catena::soil_test::command(&case, &out, plot.as_deref()).map(|r| print!("{}", r.text))
+        }
+        Command::Static { case, out } => {
+            catena::statics_cmd::command(&case, &out).map(|t| print!("{t}"))
         }
     };
     match result {

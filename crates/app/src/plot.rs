@@ -208,3 +208,122 @@ pub fn soil_test(
     root.present().map_err(&err)?;
     Ok(())
 }
+
+/// Draws one panel: `series` of (x, y) lines with a caption and axis labels.
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    let pts = series.iter().flat_map(|(v, _)| v.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        if x.is_finite() && y.is_finite() {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let (x0, x1) = padded(x0, x1);
+    let (y0, y1) = padded(y0, y1);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (v, c) in series {
+        chart
+            .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// The static configuration: shape, bending moment, effective tension and penetration along the
+/// arc length.
+pub fn static_line(
+    path: &Path,
+    title: &str,
+    r: &catena_fe::statics::LineResults,
+) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = |message: String| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
+    let areas = root.split_evenly((2, 2));
+    let blue = RGBColor(20, 90, 200);
+    let n = r.arc.len();
+    let shape: Vec<(f64, f64)> = (0..n).map(|i| (r.x[i], r.z[i])).collect();
+    let mudline = vec![
+        (r.x.iter().copied().fold(f64::INFINITY, f64::min), 0.0),
+        (r.x.iter().copied().fold(f64::NEG_INFINITY, f64::max), 0.0),
+    ];
+    let by_arc = |v: &[f64], scale: f64| -> Vec<(f64, f64)> {
+        (0..n).map(|i| (r.arc[i], v[i] * scale)).collect()
+    };
+    panel(
+        &areas[0],
+        "configuration",
+        "x from the anchor (m)",
+        "z above the mudline (m)",
+        &[(mudline, RGBColor(140, 100, 40)), (shape, blue)],
+    )
+    .map_err(perr)?;
+    panel(
+        &areas[1],
+        "bending moment (negative = sag)",
+        "arc length from the top (m)",
+        "M (kN·m)",
+        &[(by_arc(&r.moment, 1e-3), RGBColor(180, 30, 30))],
+    )
+    .map_err(perr)?;
+    panel(
+        &areas[2],
+        "effective tension",
+        "arc length from the top (m)",
+        "T (kN)",
+        &[(by_arc(&r.tension, 1e-3), blue)],
+    )
+    .map_err(perr)?;
+    panel(
+        &areas[3],
+        "invert penetration (positive down)",
+        "arc length from the top (m)",
+        "z_pen (mm)",
+        &[(
+            by_arc(
+                &r.penetration.iter().map(|p| p.max(0.0)).collect::<Vec<_>>(),
+                1e3,
+            ),
+            RGBColor(20, 150, 40),
+        )],
+    )
+    .map_err(perr)?;
+    root.present().map_err(&err)?;
+    Ok(())
+}

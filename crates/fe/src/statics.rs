@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use crate::analytical::{CatenaryError, FreeCatenary, TouchdownCatenary};
 use crate::beam::corotational_beam_chord;
-use crate::model::{LineModel, Support};
+use crate::model::LineModel;
 use crate::sparse::{LdltSolver, SolveError, SparseSym};
 
 /// Options of the static solve.

@@ -1,6 +1,7 @@
 //! Reading case files. Every table is deserialised with unknown keys denied, then checked; an error
 //! names the file, the key and what was expected.
 
+pub mod riser;
 pub mod seabed;
 
 use std::path::Path;
