@@ -40,6 +40,8 @@ pub enum Support {
     Pinned,
     /// Position and rotation prescribed.
     Fixed,
+    /// Nothing prescribed (a free end, e.g. a cantilever tip).
+    Free,
 }
 
 /// One element's properties.
@@ -185,8 +187,10 @@ impl LineModel {
         node_od[nn - 1] = elements[nn - 2].od;
         let mut fixed = vec![false; 3 * nn];
         for (node, sup) in [(0, spec.top), (nn - 1, spec.anchor)] {
-            fixed[3 * node] = true;
-            fixed[3 * node + 1] = true;
+            if sup != Support::Free {
+                fixed[3 * node] = true;
+                fixed[3 * node + 1] = true;
+            }
             if sup == Support::Fixed {
                 fixed[3 * node + 2] = true;
             }
