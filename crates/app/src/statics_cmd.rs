@@ -147,13 +147,13 @@ pub fn summary_text(run: &StaticRun) -> String {
     if let Some(m) = s.touchdown_moment {
         let _ = writeln!(t, "  moment at touchdown    {:>12.2} kN·m", m / 1e3);
     }
-    let pen_far = run.results.penetration.last().copied().unwrap_or(0.0);
     if run.model.seabed.is_some() {
-        let mid = run.results.penetration.len().saturating_sub(1) * 95 / 100;
+        // Far field: 95 % of the way from the top, away from touchdown and from the anchor pin.
+        let i = run.results.penetration.len().saturating_sub(1) * 95 / 100;
         let _ = writeln!(
             t,
-            "  penetration near the anchor {:>9.5} m (node {mid}: {:.5} m)",
-            pen_far, run.results.penetration[mid]
+            "  far-field penetration  {:>12.5} m at arc length {:.1} m",
+            run.results.penetration[i], run.results.arc[i]
         );
     }
     t

@@ -154,7 +154,8 @@ impl LineModel {
             if !(seg.section.ea > 0.0 && seg.section.ei > 0.0) {
                 return bad("EA and EI must be > 0");
             }
-            if !seg.weight.is_finite() || !(seg.mass >= 0.0) || !(seg.od > 0.0) {
+            let ok = seg.weight.is_finite() && seg.mass >= 0.0 && seg.od > 0.0;
+            if !ok {
                 return bad("weight must be finite, mass >= 0 and OD > 0");
             }
             let n = (seg.length / seg.element_length).ceil().max(1.0) as usize;

@@ -281,6 +281,16 @@ impl StaticWorkspace {
         }
     }
 
+    /// Numeric factorisation of the tangent last assembled.
+    pub fn factor_tangent(&mut self) -> Result<(), SolveError> {
+        self.solver.factor(&self.k)
+    }
+
+    /// Solves with the last factorisation, in place.
+    pub fn solve_tangent(&mut self, rhs: &mut [f64]) {
+        self.solver.solve_in_place(rhs);
+    }
+
     fn gather(&self, model: &LineModel, out: &mut [f64]) {
         for (g, e) in model.equation.iter().enumerate() {
             if let Some(i) = e {

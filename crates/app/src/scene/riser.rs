@@ -274,7 +274,7 @@ impl RiserScene {
         let mut segments = Vec::new();
         let mut from = 0.0;
         for (i, m) in raw.mesh.iter().enumerate() {
-            if !(m.to > from) {
+            if m.to.is_nan() || m.to <= from {
                 return Err(invalid(
                     file,
                     format!("mesh[{i}].to"),

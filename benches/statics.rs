@@ -1,0 +1,56 @@
+//! The static solve of the 1000 m SCR (`cases/scr1000/static-linear-k100.toml`: 860 elements,
+//! 0.5 m in the touchdown zone), and the cost of one Newton iteration split into its parts:
+//!
+//! - `scr1000_static_solve`: the whole solve from the catenary seed (seed, workspace with symbolic
+//!   factorisation, Newton);
+//! - `scr1000_assemble`: one assembly of residual and tangent;
+//! - `scr1000_factor_solve`: one numeric LDLᵀ factorisation and solve;
+//! - `scr1000_symbolic`: building the workspace (pattern and symbolic factorisation, once per run).
+//!
+//! Run: `cargo bench -p catena-benches --bench statics`.
+
+use std::path::Path;
+
+use catena_fe::statics::{self, Placement, StaticOptions, StaticWorkspace};
+use criterion::{criterion_group, criterion_main, Criterion};
+
+fn bench(c: &mut Criterion) {
+    let case =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/static-linear-k100.toml");
+    let scene = catena::statics_cmd::read_scene(&case).expect("case");
+    let model = scene.model.clone();
+    c.bench_function("scr1000_static_solve", |b| {
+        b.iter(|| {
+            let q = statics::catenary_seed(&model, &scene.ends).expect("seed");
+            let pl = Placement::new(&q);
+            let mut u = vec![0.0; q.len()];
+            let mut ws = StaticWorkspace::new(&model).expect("ws");
+            statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("solve")
+        })
+    });
+    let q = statics::catenary_seed(&model, &scene.ends).expect("seed");
+    let pl = Placement::new(&q);
+    let mut u = vec![0.0; q.len()];
+    let mut ws = StaticWorkspace::new(&model).expect("ws");
+    statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("solve");
+    c.bench_function("scr1000_assemble", |b| {
+        b.iter(|| ws.assemble(&model, &pl, &u, true))
+    });
+    let mut rhs = vec![1.0; model.n_eq];
+    c.bench_function("scr1000_factor_solve", |b| {
+        b.iter(|| {
+            ws.factor_tangent().expect("factor");
+            ws.solve_tangent(&mut rhs);
+        })
+    });
+    c.bench_function("scr1000_symbolic", |b| {
+        b.iter(|| StaticWorkspace::new(&model).expect("ws"))
+    });
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(30);
+    targets = bench
+}
+criterion_main!(benches);
