@@ -9,6 +9,7 @@
 
 pub mod analytical;
 pub mod beam;
+pub mod dynamics;
 pub mod model;
 pub mod sparse;
 pub mod statics;

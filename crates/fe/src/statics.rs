@@ -216,6 +216,66 @@ impl StaticWorkspace {
     /// tangent into [`StaticWorkspace::k`]. The seabed acts through its backbone (initial
     /// penetration only). Allocates nothing.
     pub fn assemble(&mut self, model: &LineModel, pl: &Placement, u: &[f64], with_k: bool) {
+        self.assemble_structure(model, pl, u, with_k);
+        let q = &pl.base;
+        if let Some(sb) = &model.seabed {
+            for i in 0..model.nodes() {
+                let z_pen = sb.mudline_z - (q[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]);
+                if z_pen <= 0.0 {
+                    continue;
+                }
+                let t = sb.seabed.backbone(z_pen);
+                let l = model.tributary[i];
+                self.residual[3 * i + 1] -= l * t.total();
+                if with_k {
+                    // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1.
+                    self.add_dof_tangent(model, 3 * i + 1, l * t.tangent);
+                }
+            }
+        }
+    }
+
+    /// Adds `v` to the tangent's diagonal at global dof `g` (nothing if `g` is prescribed).
+    #[inline]
+    pub fn add_dof_tangent(&mut self, model: &LineModel, g: usize, v: f64) {
+        if let Some(eq) = model.equation[g] {
+            self.k.values[self.diag_slots[eq]] += v;
+        }
+    }
+
+    /// Adds a symmetric 2×2 block `[[xx, xz], [xz, zz]]` to the tangent at node `i`'s translations.
+    #[inline]
+    pub fn add_node_block(&mut self, model: &LineModel, i: usize, xx: f64, xz: f64, zz: f64) {
+        let (ex, ez) = (model.equation[3 * i], model.equation[3 * i + 1]);
+        if let Some(a) = ex {
+            self.k.values[self.diag_slots[a]] += xx;
+        }
+        if let Some(b) = ez {
+            self.k.values[self.diag_slots[b]] += zz;
+        }
+        if let (Some(a), Some(b)) = (ex, ez) {
+            if let Some(s) = self.k.slot(a, b) {
+                self.k.values[s] += xz;
+            }
+        }
+    }
+
+    /// Multiplies every assembled tangent value by `f`.
+    pub fn scale_tangent(&mut self, f: f64) {
+        for v in &mut self.k.values {
+            *v *= f;
+        }
+    }
+
+    /// The structural part of the residual and tangent: elements, submerged weight and flexjoint
+    /// (no seabed). Allocates nothing.
+    pub fn assemble_structure(
+        &mut self,
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        with_k: bool,
+    ) {
         self.residual.fill(0.0);
         if with_k {
             self.k.clear();
@@ -253,23 +313,6 @@ impl StaticWorkspace {
         for (g, f) in model.dead_load.iter().enumerate() {
             self.residual[g] -= f;
         }
-        if let Some(sb) = &model.seabed {
-            for i in 0..model.nodes() {
-                let z_pen = sb.mudline_z - (q[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]);
-                if z_pen <= 0.0 {
-                    continue;
-                }
-                let t = sb.seabed.backbone(z_pen);
-                let l = model.tributary[i];
-                self.residual[3 * i + 1] -= l * t.total();
-                if with_k {
-                    if let Some(eq) = model.equation[3 * i + 1] {
-                        // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1.
-                        self.k.values[self.diag_slots[eq]] += l * t.tangent;
-                    }
-                }
-            }
-        }
         if let Some(fj) = &model.flexjoint {
             let g = 3 * fj.node + 2;
             self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral);
@@ -291,7 +334,8 @@ impl StaticWorkspace {
         self.solver.solve_in_place(rhs);
     }
 
-    fn gather(&self, model: &LineModel, out: &mut [f64]) {
+    /// Copies the residual's free equations into `out`.
+    pub fn gather(&self, model: &LineModel, out: &mut [f64]) {
         for (g, e) in model.equation.iter().enumerate() {
             if let Some(i) = e {
                 out[*i] = self.residual[g];
