@@ -30,6 +30,18 @@ enum Command {
         #[arg(long, conflicts_with = "plot")]
         no_plot: bool,
     },
+    /// Statics, then dynamics with top-end motion. Writes DIR/results.h5 (/static and /dynamic),
+    /// DIR/summary.json and plots (static.png, dynamic.png, gauges.png with gauges).
+    Run {
+        /// The scene file (TOML) with a [dynamic] table.
+        case: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Do not show a progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
     /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
     Static {
@@ -56,6 +68,9 @@ fn main() -> ExitCode {
                 Some(plot.unwrap_or_else(|| out.with_extension("png")))
             };
             catena::soil_test::command(&case, &out, plot.as_deref()).map(|r| print!("{}", r.text))
+        }
+        Command::Run { case, out, quiet } => {
+            catena::run_cmd::command(&case, &out, !quiet).map(|t| print!("{t}"))
         }
         Command::Static { case, out } => {
             catena::statics_cmd::command(&case, &out).map(|t| print!("{t}"))

@@ -327,3 +327,172 @@ pub fn static_line(
     root.present().map_err(&err)?;
     Ok(())
 }
+
+/// Envelopes and ranges along the line, and the top tension history.
+pub fn dynamic(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = |message: String| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let title = format!(
+        "{} — dynamics (envelopes from t = {} s)",
+        r.statics.scene.title, r.spec.envelope_start
+    );
+    let root = root.titled(&title, ("sans-serif", 24)).map_err(&err)?;
+    let areas = root.split_evenly((2, 2));
+    let arc = &r.statics.model.arc;
+    let e = &r.envelopes;
+    let line = |v: &[f64], s: f64| -> Vec<(f64, f64)> {
+        arc.iter()
+            .zip(v)
+            .filter(|(_, y)| y.is_finite())
+            .map(|(a, y)| (*a, y * s))
+            .collect()
+    };
+    let red = RGBColor(180, 30, 30);
+    let blue = RGBColor(20, 90, 200);
+    let grey = RGBColor(120, 120, 120);
+    panel(
+        &areas[0],
+        "bending moment envelope (min, max, static)",
+        "arc length from the top (m)",
+        "M (kN·m)",
+        &[
+            (line(&e.moment_min, 1e-3), red),
+            (line(&e.moment_max, 1e-3), blue),
+            (line(&r.statics.results.moment, 1e-3), grey),
+        ],
+    )
+    .map_err(perr)?;
+    panel(
+        &areas[1],
+        "bending moment range",
+        "arc length from the top (m)",
+        "ΔM (kN·m)",
+        &[(line(&e.moment_range(), 1e-3), red)],
+    )
+    .map_err(perr)?;
+    panel(
+        &areas[2],
+        "effective tension envelope (min, max)",
+        "arc length from the top (m)",
+        "T (kN)",
+        &[
+            (line(&e.tension_min, 1e-3), red),
+            (line(&e.tension_max, 1e-3), blue),
+        ],
+    )
+    .map_err(perr)?;
+    let th: Vec<(f64, f64)> = r
+        .hist
+        .t
+        .iter()
+        .zip(&r.hist.top_tension)
+        .map(|(t, v)| (*t, v * 1e-3))
+        .collect();
+    panel(
+        &areas[3],
+        "top tension",
+        "time (s)",
+        "T_top (kN)",
+        &[(th, blue)],
+    )
+    .map_err(perr)?;
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
+/// Bending moment at each gauge against the top height: rising top (pull-up) red, falling
+/// (lay-down) blue, still grey — the manner of the paper's Figures 7 and 8.
+pub fn gauges(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = |message: String| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let ng = r.spec.gauges.len();
+    let root = BitMapBackend::new(path, (900 * ng.min(3) as u32, 750)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let areas = root.split_evenly((1, ng.min(3)));
+    let h = &r.hist;
+    for (k, g) in r.spec.gauges.iter().enumerate().take(3) {
+        let mut up = Vec::new();
+        let mut down = Vec::new();
+        let mut still = Vec::new();
+        for i in 1..h.t.len() {
+            let dz = h.top_z[i] - h.top_z[i - 1];
+            let p = (h.top_z[i], h.gauge_moment[k][i] * 1e-3);
+            if dz > 1e-9 {
+                up.push(p);
+            } else if dz < -1e-9 {
+                down.push(p);
+            } else {
+                still.push(p);
+            }
+        }
+        let mut series = vec![(up, RGBColor(200, 30, 30)), (down, RGBColor(20, 90, 200))];
+        if !still.is_empty() {
+            series.push((still, RGBColor(140, 140, 140)));
+        }
+        let caption = format!(
+            "{}: gauge {} (arc {:.2} m): red pull-up, blue lay-down",
+            r.statics.scene.title, g.name, g.arc
+        );
+        scatter_panel(
+            &areas[k],
+            &caption,
+            "top height above the mudline (m)",
+            "bending moment (kN·m)",
+            &series,
+        )
+        .map_err(perr)?;
+    }
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
+fn scatter_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|(v, _)| v.iter().copied()).collect();
+    let (x0, x1) = padded(
+        all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
+        all.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (y0, y1) = padded(
+        all.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+        all.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
+    );
+    if !(x0.is_finite() && y0.is_finite()) {
+        return Ok(());
+    }
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 16))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (v, c) in series {
+        chart
+            .draw_series(v.iter().map(|p| Circle::new(*p, 2, c.filled())))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}

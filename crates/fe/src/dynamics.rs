@@ -794,3 +794,81 @@ pub fn sdof_free_vibration(
     }
     u
 }
+
+/// Nodal results of a converged dynamic state (preallocated; refilled without allocating).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Snapshot {
+    /// x, m.
+    pub x: Vec<f64>,
+    /// z, m.
+    pub z: Vec<f64>,
+    /// Effective tension, N (end nodes: the support reaction's magnitude, inertia included).
+    pub tension: Vec<f64>,
+    /// Bending moment, N·m (negative = sag).
+    pub moment: Vec<f64>,
+    /// Invert penetration, m (positive down).
+    pub penetration: Vec<f64>,
+    /// Seabed force per unit length (resistance, buoyancy and damping), N/m.
+    pub seabed_force: Vec<f64>,
+    /// Contact mode code (0 not in contact, 1 initial penetration, 2 uplift, 3 repenetration).
+    pub mode: Vec<u8>,
+}
+
+impl Snapshot {
+    /// A snapshot for `n` nodes.
+    pub fn new(n: usize) -> Self {
+        Self {
+            x: vec![0.0; n],
+            z: vec![0.0; n],
+            tension: vec![0.0; n],
+            moment: vec![0.0; n],
+            penetration: vec![0.0; n],
+            seabed_force: vec![0.0; n],
+            mode: vec![0; n],
+        }
+    }
+}
+
+/// Fills `out` from the State just committed by [`advance`] (the workspace still holds the
+/// converged evaluation).
+pub fn snapshot(
+    model: &LineModel,
+    pl: &Placement,
+    state: &DynState,
+    ws: &DynWorkspace,
+    out: &mut Snapshot,
+) {
+    let n = model.nodes();
+    let ne = n - 1;
+    for i in 0..n {
+        out.x[i] = pl.base[3 * i] + state.u[3 * i];
+        out.z[i] = pl.base[3 * i + 1] + state.u[3 * i + 1];
+        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
+        if i > 0 {
+            t += ws.st.axial[i - 1];
+            m += ws.st.moments[i - 1].1;
+            c += 1.0;
+        }
+        if i < ne {
+            t += ws.st.axial[i];
+            m += ws.st.moments[i].0;
+            c += 1.0;
+        }
+        out.tension[i] = t / c;
+        out.moment[i] = m / c;
+        out.penetration[i] = penetration(model, pl, &state.u, &state.v, i).map_or(0.0, |p| p.0);
+        out.seabed_force[i] = if model.seabed.is_some() {
+            ws.seabed_force[i]
+        } else {
+            0.0
+        };
+        out.mode[i] = state.history[i].mode.code();
+    }
+    for i in [0, n - 1] {
+        let m = ws.mass[i];
+        let (ax, az) = (state.a[3 * i], state.a[3 * i + 1]);
+        let rx = m[0] * ax + m[1] * az + state.f_prev[3 * i];
+        let rz = m[1] * ax + m[2] * az + state.f_prev[3 * i + 1];
+        out.tension[i] = (rx * rx + rz * rz).sqrt();
+    }
+}

@@ -2,6 +2,7 @@
 //! Every key, its unit and its default are listed in `docs/scene.md`.
 
 use catena_fe::beam::Section;
+use catena_fe::dynamics::{DynamicSettings, Hydro, Scheme, TopMotion};
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::statics::EndPositions;
 use serde::Deserialize;
@@ -112,6 +113,160 @@ fn default_max_iter() -> usize {
     40
 }
 
+/// The integration scheme as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SchemeKey {
+    /// HHT-α.
+    Hht,
+    /// Newmark (β, γ).
+    Newmark,
+}
+
+/// `[dynamic]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct DynamicTable {
+    pub duration: f64,
+    pub time_step: f64,
+    pub output_interval: Option<f64>,
+    #[serde(default = "hht")]
+    pub scheme: SchemeKey,
+    pub alpha: Option<f64>,
+    pub beta: Option<f64>,
+    pub gamma: Option<f64>,
+    #[serde(default = "default_dyn_tol")]
+    pub tolerance: f64,
+    #[serde(default = "default_dyn_iter")]
+    pub max_iterations: usize,
+    #[serde(default = "default_cuts")]
+    pub max_step_cuts: u32,
+    #[serde(default)]
+    pub envelope_start: f64,
+}
+
+fn hht() -> SchemeKey {
+    SchemeKey::Hht
+}
+fn default_dyn_tol() -> f64 {
+    1e-8
+}
+fn default_dyn_iter() -> usize {
+    20
+}
+fn default_cuts() -> u32 {
+    6
+}
+
+/// `[hydrodynamics]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct HydroTable {
+    pub cd_normal: f64,
+    #[serde(default)]
+    pub cd_axial: f64,
+    pub ca_normal: f64,
+}
+
+/// `[current]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct CurrentTable {
+    pub profile: Vec<[f64; 2]>,
+}
+
+/// A stage of `[motion.staged]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct StageTable {
+    pub duration: f64,
+    #[serde(default)]
+    pub vx: f64,
+    #[serde(default)]
+    pub vz: f64,
+}
+
+/// `[motion]`: exactly one of its sub-tables.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct MotionTable {
+    pub staged: Option<StagedTable>,
+    pub harmonic: Option<HarmonicTable>,
+    pub series: Option<SeriesTable>,
+}
+
+/// `[motion.staged]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct StagedTable {
+    pub stages: Vec<StageTable>,
+}
+
+/// `[motion.harmonic]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct HarmonicTable {
+    #[serde(default)]
+    pub heave: f64,
+    #[serde(default)]
+    pub surge: f64,
+    pub period: f64,
+    #[serde(default)]
+    pub phase_deg: f64,
+    #[serde(default)]
+    pub ramp: f64,
+}
+
+/// `[motion.series]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SeriesTable {
+    pub file: String,
+}
+
+/// `[[gauge]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct GaugeTable {
+    pub name: String,
+    pub arc: f64,
+}
+
+/// A gauge: bending moment and tension recorded at an arc length (interpolated between nodes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gauge {
+    /// Its name.
+    pub name: String,
+    /// Arc length from the top, m.
+    pub arc: f64,
+}
+
+/// The dynamic part of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicSpec {
+    /// Solver settings and the optional effects.
+    pub settings: DynamicSettings,
+    /// Duration, s.
+    pub duration: f64,
+    /// Time step, s.
+    pub dt: f64,
+    /// Output every this many steps.
+    pub output_every: usize,
+    /// Envelopes are taken from this time on, s.
+    pub envelope_start: f64,
+    /// Gauges.
+    pub gauges: Vec<Gauge>,
+}
+
 /// A riser scene file as written.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -126,6 +281,12 @@ pub struct RiserFile {
     pub flexjoint: Option<FlexJointTable>,
     #[serde(rename = "static")]
     pub statics: Option<StaticTable>,
+    pub dynamic: Option<DynamicTable>,
+    pub hydrodynamics: Option<HydroTable>,
+    pub current: Option<CurrentTable>,
+    pub motion: Option<MotionTable>,
+    #[serde(default)]
+    pub gauge: Vec<GaugeTable>,
 }
 
 /// A riser scene, read and checked.
@@ -149,6 +310,8 @@ pub struct RiserScene {
     pub water_depth: f64,
     /// Line summary: (EA, EI, submerged weight, mass).
     pub line: (f64, f64, f64, f64),
+    /// The dynamic analysis, if the scene has a `[dynamic]` table.
+    pub dynamic: Option<DynamicSpec>,
 }
 
 fn positive(file: &str, key: &str, v: f64, what: &str) -> Result<f64, SceneError> {
@@ -392,6 +555,26 @@ impl RiserScene {
             ));
         }
         let _ = required::<f64>;
+        let dynamic = match &raw.dynamic {
+            Some(d) => Some(dynamic_spec(file, &raw, d, env.water_density, l.length)?),
+            None => {
+                for (present, key) in [
+                    (raw.hydrodynamics.is_some(), "hydrodynamics"),
+                    (raw.current.is_some(), "current"),
+                    (raw.motion.is_some(), "motion"),
+                    (!raw.gauge.is_empty(), "gauge"),
+                ] {
+                    if present {
+                        return Err(invalid(
+                            file,
+                            key,
+                            "a [dynamic] table as well (this table only acts in a dynamic run)",
+                        ));
+                    }
+                }
+                None
+            }
+        };
         Ok(Self {
             file: file.to_string(),
             text: text.to_string(),
@@ -411,6 +594,273 @@ impl RiserScene {
             }),
             water_depth: env.water_depth,
             line: (ea, ei, weight, mass),
+            dynamic,
         })
     }
+}
+
+fn dynamic_spec(
+    file: &str,
+    raw: &RiserFile,
+    d: &DynamicTable,
+    water_density: f64,
+    length: f64,
+) -> Result<DynamicSpec, SceneError> {
+    positive(file, "dynamic.duration", d.duration, "a duration in s")?;
+    positive(file, "dynamic.time_step", d.time_step, "a time step in s")?;
+    if d.time_step > d.duration {
+        return Err(invalid(
+            file,
+            "dynamic.time_step",
+            "a time step no longer than the duration",
+        ));
+    }
+    let out = d.output_interval.unwrap_or(d.time_step);
+    positive(file, "dynamic.output_interval", out, "an interval in s")?;
+    let every = (out / d.time_step).round();
+    if every < 1.0 || ((every * d.time_step) - out).abs() > 1e-9 * out {
+        return Err(invalid(
+            file,
+            "dynamic.output_interval",
+            "a whole multiple of dynamic.time_step",
+        ));
+    }
+    let scheme = match d.scheme {
+        SchemeKey::Hht => {
+            if d.beta.is_some() || d.gamma.is_some() {
+                return Err(invalid(
+                    file,
+                    "dynamic.beta",
+                    "no beta or gamma with scheme = \"hht\" (they follow from alpha)",
+                ));
+            }
+            let alpha = d.alpha.unwrap_or(-0.1);
+            if !(-1.0 / 3.0..=0.0).contains(&alpha) {
+                return Err(invalid(
+                    file,
+                    "dynamic.alpha",
+                    format!("-1/3 <= alpha <= 0 (Hilber's convention), got {alpha}"),
+                ));
+            }
+            Scheme::Hht { alpha }
+        }
+        SchemeKey::Newmark => {
+            if d.alpha.is_some() {
+                return Err(invalid(
+                    file,
+                    "dynamic.alpha",
+                    "no alpha with scheme = \"newmark\"",
+                ));
+            }
+            let beta = d.beta.unwrap_or(0.25);
+            let gamma = d.gamma.unwrap_or(0.5);
+            if !(beta > 0.0 && beta <= 0.5) {
+                return Err(invalid(
+                    file,
+                    "dynamic.beta",
+                    format!("0 < beta <= 0.5, got {beta}"),
+                ));
+            }
+            if !(gamma >= 0.5 && gamma <= 1.0) {
+                return Err(invalid(
+                    file,
+                    "dynamic.gamma",
+                    format!("0.5 <= gamma <= 1, got {gamma}"),
+                ));
+            }
+            Scheme::Newmark { beta, gamma }
+        }
+    };
+    positive(
+        file,
+        "dynamic.tolerance",
+        d.tolerance,
+        "a relative tolerance",
+    )?;
+    let hydro = match (&raw.hydrodynamics, &raw.current) {
+        (Some(h), cur) => {
+            for (k, v) in [
+                ("hydrodynamics.cd_normal", h.cd_normal),
+                ("hydrodynamics.cd_axial", h.cd_axial),
+                ("hydrodynamics.ca_normal", h.ca_normal),
+            ] {
+                if !(v >= 0.0 && v.is_finite()) {
+                    return Err(invalid(file, k, format!("a coefficient >= 0, got {v}")));
+                }
+            }
+            let mut current: Vec<(f64, f64)> = Vec::new();
+            if let Some(c) = cur {
+                if c.profile.is_empty() {
+                    return Err(invalid(
+                        file,
+                        "current.profile",
+                        "at least one [z, speed] pair",
+                    ));
+                }
+                for (i, p) in c.profile.iter().enumerate() {
+                    if !(p[0].is_finite() && p[1].is_finite())
+                        || current.last().is_some_and(|l| p[0] <= l.0)
+                    {
+                        return Err(invalid(
+                            file,
+                            format!("current.profile[{i}]"),
+                            "[z (m, increasing), speed (m/s)] pairs",
+                        ));
+                    }
+                    current.push((p[0], p[1]));
+                }
+            }
+            Some(Hydro {
+                water_density,
+                cd_normal: h.cd_normal,
+                cd_axial: h.cd_axial,
+                ca_normal: h.ca_normal,
+                current,
+            })
+        }
+        (None, Some(_)) => {
+            return Err(invalid(
+                file,
+                "current",
+                "a [hydrodynamics] table as well (the current acts through drag)",
+            ))
+        }
+        (None, None) => None,
+    };
+    let motion = match &raw.motion {
+        None => None,
+        Some(m) => {
+            let count = [m.staged.is_some(), m.harmonic.is_some(), m.series.is_some()]
+                .iter()
+                .filter(|b| **b)
+                .count();
+            if count != 1 {
+                return Err(invalid(
+                    file,
+                    "motion",
+                    "exactly one of [motion.staged], [motion.harmonic], [motion.series]",
+                ));
+            }
+            if let Some(st) = &m.staged {
+                if st.stages.is_empty() {
+                    return Err(invalid(file, "motion.staged.stages", "at least one stage"));
+                }
+                for (i, s) in st.stages.iter().enumerate() {
+                    if !(s.duration >= 0.0
+                        && s.duration.is_finite()
+                        && s.vx.is_finite()
+                        && s.vz.is_finite())
+                    {
+                        return Err(invalid(
+                            file,
+                            format!("motion.staged.stages[{i}]"),
+                            "a duration >= 0 s and finite velocities in m/s",
+                        ));
+                    }
+                }
+                Some(TopMotion::Staged(
+                    st.stages.iter().map(|s| (s.duration, s.vx, s.vz)).collect(),
+                ))
+            } else if let Some(h) = &m.harmonic {
+                positive(file, "motion.harmonic.period", h.period, "a period in s")?;
+                if !(h.ramp >= 0.0) {
+                    return Err(invalid(
+                        file,
+                        "motion.harmonic.ramp",
+                        "a ramp duration >= 0 s",
+                    ));
+                }
+                Some(TopMotion::Harmonic {
+                    surge: h.surge,
+                    heave: h.heave,
+                    period: h.period,
+                    phase: h.phase_deg.to_radians(),
+                    ramp: h.ramp,
+                })
+            } else if let Some(se) = &m.series {
+                let base = std::path::Path::new(file)
+                    .parent()
+                    .unwrap_or(std::path::Path::new("."));
+                let path = base.join(&se.file);
+                let text = std::fs::read_to_string(&path).map_err(|e| {
+                    invalid(
+                        file,
+                        "motion.series.file",
+                        format!("a readable CSV file ({}: {e})", path.display()),
+                    )
+                })?;
+                let mut pts = Vec::new();
+                for (ln, line) in text.lines().enumerate().skip(1) {
+                    if line.trim().is_empty() {
+                        continue;
+                    }
+                    let v: Vec<f64> = line
+                        .split(',')
+                        .filter_map(|x| x.trim().parse().ok())
+                        .collect();
+                    if v.len() != 3 || pts.last().is_some_and(|p: &(f64, f64, f64)| v[0] <= p.0) {
+                        return Err(invalid(
+                            file,
+                            "motion.series.file",
+                            format!(
+                                "{}: line {}: three numbers t, dx, dz with t increasing",
+                                path.display(),
+                                ln + 1
+                            ),
+                        ));
+                    }
+                    pts.push((v[0], v[1], v[2]));
+                }
+                if pts.is_empty() {
+                    return Err(invalid(
+                        file,
+                        "motion.series.file",
+                        format!(
+                            "{}: a header line and at least one row t, dx, dz",
+                            path.display()
+                        ),
+                    ));
+                }
+                Some(TopMotion::Series(pts))
+            } else {
+                None
+            }
+        }
+    };
+    let mut gauges = Vec::new();
+    for (i, g) in raw.gauge.iter().enumerate() {
+        if !(g.arc >= 0.0 && g.arc <= length) {
+            return Err(invalid(
+                file,
+                format!("gauge[{i}].arc"),
+                format!("an arc length from the top within [0, {length}] m"),
+            ));
+        }
+        gauges.push(Gauge {
+            name: g.name.clone(),
+            arc: g.arc,
+        });
+    }
+    if !(d.envelope_start >= 0.0 && d.envelope_start < d.duration) {
+        return Err(invalid(
+            file,
+            "dynamic.envelope_start",
+            "a time in [0, duration) s",
+        ));
+    }
+    Ok(DynamicSpec {
+        settings: DynamicSettings {
+            scheme,
+            hydro,
+            motion,
+            tol: d.tolerance,
+            max_iter: d.max_iterations,
+            max_cuts: d.max_step_cuts,
+        },
+        duration: d.duration,
+        dt: d.time_step,
+        output_every: every as usize,
+        envelope_start: d.envelope_start,
+        gauges,
+    })
 }
