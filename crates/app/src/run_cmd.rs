@@ -115,16 +115,44 @@ fn at_arc(arc: &[f64], v: &[f64], s: f64) -> f64 {
     v[i - 1] + f * (v[i] - v[i - 1])
 }
 
+/// Places the gauges defined by a touchdown rule: midway (in arc length) between the static touchdown
+/// point and the one with the top raised by `lift` (a second static solve).
+pub fn resolve_gauges(statics: &StaticRun, spec: &mut DynamicSpec) -> Result<(), AppError> {
+    for (i, g) in spec.gauges.iter_mut().enumerate() {
+        if let Some(lift) = g.midway_touchdown_lift {
+            let fail = |what: &str| AppError::Run {
+                file: statics.scene.file.clone(),
+                message: format!("key `gauge[{i}].midway_touchdown_lift`: {what}"),
+            };
+            let t0 = statics
+                .summary
+                .touchdown_arc
+                .ok_or_else(|| fail("the line does not touch down in the statics"))?;
+            let mut raised = statics.scene.clone();
+            raised.ends.top.1 += lift;
+            let r = statics_cmd::solve(raised)
+                .map_err(|e| fail(&format!("the static solve with the top raised failed: {e}")))?;
+            let t1 = r
+                .summary
+                .touchdown_arc
+                .ok_or_else(|| fail("with the top raised, the line no longer touches down"))?;
+            g.arc = 0.5 * (t0 + t1);
+        }
+    }
+    Ok(())
+}
+
 /// Runs statics then dynamics, streaming records to `recorder` if given.
 pub fn run(
     statics: StaticRun,
     mut recorder: Option<&mut Recorder>,
     progress: bool,
 ) -> Result<DynamicRun, AppError> {
-    let spec = statics.scene.dynamic.clone().ok_or_else(|| AppError::Run {
+    let mut spec = statics.scene.dynamic.clone().ok_or_else(|| AppError::Run {
         file: statics.scene.file.clone(),
         message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
     })?;
+    resolve_gauges(&statics, &mut spec)?;
     let model = &statics.model;
     let pl = &statics.placement;
     let set = &spec.settings;

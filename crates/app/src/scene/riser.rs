@@ -238,7 +238,8 @@ pub struct SeriesTable {
 #[allow(missing_docs)]
 pub struct GaugeTable {
     pub name: String,
-    pub arc: f64,
+    pub arc: Option<f64>,
+    pub midway_touchdown_lift: Option<f64>,
 }
 
 /// A gauge: bending moment and tension recorded at an arc length (interpolated between nodes).
@@ -246,8 +247,11 @@ pub struct GaugeTable {
 pub struct Gauge {
     /// Its name.
     pub name: String,
-    /// Arc length from the top, m.
+    /// Arc length from the top, m (for a `midway_touchdown_lift` gauge, set after the statics).
     pub arc: f64,
+    /// If given: the gauge lies midway (in arc length) between the static touchdown point and the one
+    /// with the top raised by this much, m.
+    pub midway_touchdown_lift: Option<f64>,
 }
 
 /// The dynamic part of a scene.
@@ -829,17 +833,49 @@ fn dynamic_spec(
     };
     let mut gauges = Vec::new();
     for (i, g) in raw.gauge.iter().enumerate() {
-        if !(g.arc >= 0.0 && g.arc <= length) {
+        if g.name.is_empty() || g.name.contains('/') {
             return Err(invalid(
                 file,
-                format!("gauge[{i}].arc"),
-                format!("an arc length from the top within [0, {length}] m"),
+                format!("gauge[{i}].name"),
+                "a non-empty name without '/'",
             ));
         }
-        gauges.push(Gauge {
-            name: g.name.clone(),
-            arc: g.arc,
-        });
+        match (g.arc, g.midway_touchdown_lift) {
+            (Some(arc), None) => {
+                if !(0.0..=length).contains(&arc) {
+                    return Err(invalid(
+                        file,
+                        format!("gauge[{i}].arc"),
+                        format!("an arc length from the top within [0, {length}] m"),
+                    ));
+                }
+                gauges.push(Gauge {
+                    name: g.name.clone(),
+                    arc,
+                    midway_touchdown_lift: None,
+                });
+            }
+            (None, Some(lift)) => {
+                positive(
+                    file,
+                    &format!("gauge[{i}].midway_touchdown_lift"),
+                    lift,
+                    "a lift of the top in m",
+                )?;
+                gauges.push(Gauge {
+                    name: g.name.clone(),
+                    arc: f64::NAN,
+                    midway_touchdown_lift: Some(lift),
+                });
+            }
+            _ => {
+                return Err(invalid(
+                    file,
+                    format!("gauge[{i}]"),
+                    "exactly one of `arc` (m) or `midway_touchdown_lift` (m)",
+                ))
+            }
+        }
     }
     if !(d.envelope_start >= 0.0 && d.envelope_start < d.duration) {
         return Err(invalid(
