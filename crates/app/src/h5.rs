@@ -56,10 +56,10 @@ pub fn write_static(path: &Path, run: &StaticRun) -> Result<(), AppError> {
 /// Writes the root attributes and the `/static` group into an open file.
 pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result<(), AppError> {
     let err = h5err(path);
-    attr(&f, "catena_version", env!("CARGO_PKG_VERSION")).map_err(&err)?;
-    attr(&f, "case", &run.scene.file).map_err(&err)?;
-    attr(&f, "scene", &run.scene.text).map_err(&err)?;
-    attr(&f, "units", "SI: m, N, N·m, N/m, s, rad").map_err(&err)?;
+    attr(f, "catena_version", env!("CARGO_PKG_VERSION")).map_err(&err)?;
+    attr(f, "case", &run.scene.file).map_err(&err)?;
+    attr(f, "scene", &run.scene.text).map_err(&err)?;
+    attr(f, "units", "SI: m, N, N·m, N/m, s, rad").map_err(&err)?;
     let g = f.create_group("static").map_err(&err)?;
     let r = &run.results;
     for (name, data, units) in [

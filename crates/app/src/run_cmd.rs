@@ -249,7 +249,7 @@ pub fn run(
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    if let Some(r) = recorder.as_deref_mut() {
+    if let Some(r) = recorder {
         r.flush()?;
     }
     Ok(DynamicRun {
@@ -275,6 +275,31 @@ fn finite_or_null(v: &[f64]) -> Vec<serde_json::Value> {
             }
         })
         .collect()
+}
+
+/// Extremes of a gauge's moment while the top rises and while it falls: `(rising min, rising max,
+/// falling min, falling max)`, N·m (NaN if the top never moves that way).
+pub fn gauge_by_direction(r: &DynamicRun, k: usize) -> (f64, f64, f64, f64) {
+    let h = &r.hist;
+    let (mut a, mut b, mut c, mut d) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for i in 1..h.t.len() {
+        let dz = h.top_z[i] - h.top_z[i - 1];
+        let m = h.gauge_moment[k][i];
+        if dz > 1e-9 {
+            a = a.min(m);
+            b = b.max(m);
+        } else if dz < -1e-9 {
+            c = c.min(m);
+            d = d.max(m);
+        }
+    }
+    let nan = |v: f64| if v.is_finite() { v } else { f64::NAN };
+    (nan(a), nan(b), nan(c), nan(d))
 }
 
 /// Key numbers of a run: `(max moment range, its arc, top tension min, max)`.
@@ -309,10 +334,20 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
         .enumerate()
         .map(|(k, g)| {
             let m = &r.hist.gauge_moment[k];
+            let (rmin, rmax, fmin, fmax) = gauge_by_direction(r, k);
+            let num = |v: f64| {
+                if v.is_finite() {
+                    json!(v)
+                } else {
+                    serde_json::Value::Null
+                }
+            };
             json!({
                 "name": g.name, "arc": g.arc,
                 "moment_min": m.iter().copied().fold(f64::INFINITY, f64::min),
                 "moment_max": m.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                "moment_min_top_rising": num(rmin), "moment_max_top_rising": num(rmax),
+                "moment_min_top_falling": num(fmin), "moment_max_top_falling": num(fmax),
             })
         })
         .collect();
@@ -385,6 +420,14 @@ pub fn summary_text(r: &DynamicRun) -> String {
             m.iter().copied().fold(f64::INFINITY, f64::min) / 1e3,
             m.iter().copied().fold(f64::NEG_INFINITY, f64::max) / 1e3
         );
+        let (rmin, rmax, fmin, fmax) = gauge_by_direction(r, k);
+        if rmin.is_finite() || fmin.is_finite() {
+            let _ = writeln!(
+                t,
+                "    top rising (pull-up): {:.2} to {:.2} kN·m; top falling (lay-down): {:.2} to {:.2} kN·m",
+                rmin / 1e3, rmax / 1e3, fmin / 1e3, fmax / 1e3
+            );
+        }
     }
     if let Some(e) = &r.error {
         let _ = writeln!(t, "  STOPPED EARLY: {e}");

@@ -417,6 +417,7 @@ pub fn initial_state(
     state
 }
 
+#[allow(clippy::needless_range_loop)]
 /// Assembles the non-inertial forces `F(u, v)` into `ws.f` (and the trial histories into `ws.next`);
 /// with `with_k`, also `(1+α)(K + c_v·C)` into the tangent (scaled by `k_scale = 1 + α`).
 #[allow(clippy::too_many_arguments)]
@@ -537,6 +538,7 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
 /// One attempt at a step of `dt` from `state`. On success the State is advanced (histories
 /// committed); on failure it is untouched and the error carries the last iterate's residual.
 fn attempt(

@@ -194,7 +194,7 @@ impl StaticWorkspace {
         let diag_slots = (0..model.n_eq)
             .map(|i| k.slot(i, i).unwrap_or(NONE))
             .collect();
-        let solver = LdltSolver::new(&k)?;
+        let solver = LdltSolver::with_ordering(&k, true)?;
         let n3 = 3 * model.nodes();
         Ok(Self {
             k,

@@ -84,6 +84,7 @@ fn spectral_radius(scheme: Scheme, omega2: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn line(
     n: usize,
     l: f64,

@@ -665,7 +665,7 @@ fn dynamic_spec(
                     format!("0 < beta <= 0.5, got {beta}"),
                 ));
             }
-            if !(gamma >= 0.5 && gamma <= 1.0) {
+            if !(0.5..=1.0).contains(&gamma) {
                 return Err(invalid(
                     file,
                     "dynamic.gamma",
@@ -767,7 +767,7 @@ fn dynamic_spec(
                 ))
             } else if let Some(h) = &m.harmonic {
                 positive(file, "motion.harmonic.period", h.period, "a period in s")?;
-                if !(h.ramp >= 0.0) {
+                if h.ramp.is_nan() || h.ramp < 0.0 {
                     return Err(invalid(
                         file,
                         "motion.harmonic.ramp",
