@@ -305,3 +305,44 @@ fn watchet_suction_deepens_the_pull_up_dip() {
     let i = r.arc.iter().position(|a| *a >= 100.0).expect("node");
     assert!((sb.backbone(r.penetration[i]).total() / w - 1.0).abs() < 2e-4);
 }
+
+/// A run whose steps cannot converge (one Newton iteration allowed) cuts the step, then stops with
+/// an error that says when (t, step, iteration), where (node, arc length) and by how much (the
+/// residual), and keeps its results: the file has the statics and every record up to the last
+/// converged step, and summary.json says the run did not complete.
+#[test]
+fn failed_run_reports_context_and_keeps_results() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail");
+    let case = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail.toml");
+    let text = heave_text()
+        .replace("duration = 100.0", "duration = 5.0")
+        .replace(
+            "envelope_start = 50.0",
+            "envelope_start = 0.0\nmax_iterations = 1\nmax_step_cuts = 2",
+        );
+    std::fs::write(&case, text).expect("case");
+    let err = run_cmd::command(&case, &out, false)
+        .expect_err("cannot converge")
+        .to_string();
+    println!("{err}");
+    for needle in [
+        "dyn_fail.toml",
+        "did not converge after 2 step cuts",
+        "t = ",
+        "step 1",
+        "iteration",
+        "relative residual",
+        "node",
+        "arc length",
+        "results up to the last converged step",
+    ] {
+        assert!(err.contains(needle), "`{needle}` missing from: {err}");
+    }
+    let f = hdf5::File::open(out.join("results.h5")).expect("h5 kept");
+    assert_eq!(f.dataset("static/arc").expect("static").shape(), vec![401]);
+    assert_eq!(f.dataset("dynamic/time").expect("time").shape(), vec![1]);
+    let js: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
+            .expect("json");
+    assert_eq!(js["dynamic"]["completed"], false);
+}

@@ -211,3 +211,55 @@ fn rigid_limit_pendulum() {
     println!("pendulum period {period:.5} s (6.1137 s)");
     assert!((period / 6.1137 - 1.0).abs() < 5e-3, "{period}");
 }
+
+/// Top-end motions: velocity and acceleration are the time derivatives of the displacement (central
+/// differences, relative 1e-5), the quintic ramp is 0 → 1 with zero slope at both ends, stages add up
+/// and a series is interpolated linearly.
+#[test]
+fn top_motion_kinematics() {
+    use catena_fe::dynamics::{quintic_ramp, TopMotion};
+    assert_eq!(quintic_ramp(0.0, 10.0), (0.0, 0.0, 0.0));
+    assert_eq!(quintic_ramp(10.0, 10.0), (1.0, 0.0, 0.0));
+    assert!((quintic_ramp(5.0, 10.0).0 - 0.5).abs() < 1e-15);
+    let h = TopMotion::Harmonic {
+        surge: 0.5,
+        heave: 2.0,
+        period: 10.0,
+        phase: 0.3,
+        ramp: 10.0,
+    };
+    for t in [1.0, 4.0, 7.5, 12.0] {
+        let e = 1e-5;
+        let (_, v, a) = h.at(t);
+        let (dp, vp, _) = h.at(t + e);
+        let (dm, vm, _) = h.at(t - e);
+        for k in 0..2 {
+            let fd_v = (dp[k] - dm[k]) / (2.0 * e);
+            let fd_a = (vp[k] - vm[k]) / (2.0 * e);
+            assert!(
+                (fd_v - v[k]).abs() <= 1e-5 * v[k].abs().max(1e-3),
+                "t {t}: v {fd_v} {}",
+                v[k]
+            );
+            assert!(
+                (fd_a - a[k]).abs() <= 1e-5 * a[k].abs().max(1e-3),
+                "t {t}: a {fd_a} {}",
+                a[k]
+            );
+        }
+    }
+    let s = TopMotion::Staged(vec![
+        (20.0, 0.0, 0.0),
+        (22.0, 0.0, 0.1),
+        (5.0, 0.0, 0.0),
+        (22.0, 0.0, -0.1),
+    ]);
+    assert_eq!(s.at(10.0).0, [0.0, 0.0]);
+    assert!((s.at(31.0).0[1] - 1.1).abs() < 1e-12 && s.at(31.0).1[1] == 0.1);
+    assert!((s.at(44.0).0[1] - 2.2).abs() < 1e-12);
+    assert!(s.at(80.0).0[1].abs() < 1e-12 && s.at(80.0).1 == [0.0, 0.0]);
+    let ser = TopMotion::Series(vec![(0.0, 0.0, 0.0), (2.0, 1.0, -2.0)]);
+    assert_eq!(ser.at(1.0).0, [0.5, -1.0]);
+    assert_eq!(ser.at(1.0).1, [0.5, -1.0]);
+    assert_eq!(ser.at(5.0).0, [1.0, -2.0]);
+}
