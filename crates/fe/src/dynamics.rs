@@ -26,7 +26,8 @@
 //! tangent `t` at the start of the step, and a small rotary inertia `m·L·D²/8` (a thin tube's).
 //!
 //! **Drag (Morison)** on the velocity relative to the current `U(z)`, split along the tangent `t`:
-//! `f = ½ρ Cd_n D |v_n| v_n + ½ρ Cd_a πD |v_t| v_t t` per unit length, lumped at nodes. Its velocity
+//! `f = ½ρ Cd_n D |v_n| v_n + ½ρ Cd_a πD |v_t| v_t t` per unit (unstretched) length, lumped at nodes
+//! over their tributary lengths, like weight and mass. Its velocity
 //! derivative enters `C`; its dependence on the orientation is left out of the Jacobian.
 //!
 //! **Seabed.** Each node's trial is evaluated from its committed history (pure); the histories are
