@@ -14,7 +14,10 @@
 //! where `F` collects every non-inertial force (elements, flexjoint, weight, seabed, drag, seabed
 //! damping) as "internal minus external". `F_n` is kept in the State, so the step is exactly
 //! reproducible after a restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
-//! The spectral radius at infinite frequency is `(1 + α)/(1 − α)`.
+//! The spectral radius at infinite frequency is `(1 + α)/(1 − α)`. The first Newton iteration of a
+//! step reuses the Jacobian factorised last (same Δt) — a modified-Newton start that saves one
+//! factorisation per step; the following iterations are full Newton, so the converged answer is the
+//! same.
 //!
 //! **Prescribed motion.** The top node's position, velocity and acceleration at `t_{n+1}` are those of
 //! the motion at `t_{n+1}`, exactly: only forces are α-weighted. (Evaluating the prescribed node at
@@ -315,6 +318,9 @@ pub struct DynWorkspace {
     u: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
+    /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
+    /// of the next step of the same Δt).
+    factored_dt: Option<f64>,
 }
 
 impl DynWorkspace {
@@ -332,6 +338,7 @@ impl DynWorkspace {
             u: vec![0.0; 3 * n],
             v: vec![0.0; 3 * n],
             a: vec![0.0; 3 * n],
+            factored_dt: None,
         })
     }
 }
@@ -373,6 +380,7 @@ pub fn initial_state(
             },
         )
         .collect();
+    ws.factored_dt = None;
     let mut state = DynState {
         t: 0.0,
         step: 0,
@@ -591,6 +599,9 @@ fn attempt(
                 }
             }
         }
+        // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
+        // step instead of two; later iterations are full Newton.
+        let reuse = it == 0 && ws.factored_dt == Some(dt);
         let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
         forces(
             model,
@@ -600,7 +611,7 @@ fn attempt(
             &v,
             &state.history,
             ws,
-            true,
+            !reuse,
             1.0 + alpha,
             c_v,
         );
@@ -617,9 +628,11 @@ fn attempt(
                     ws.g[e] = inertia[k] + (1.0 + alpha) * ws.f[g] - alpha * state.f_prev[g];
                 }
             }
-            ws.st
-                .add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
-            ws.st.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+            if !reuse {
+                ws.st
+                    .add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
+                ws.st.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+            }
         }
         let r = norm(&ws.g) / refn;
         let worst =
@@ -644,8 +657,12 @@ fn attempt(
             return Ok(());
         }
         *iterations += 1;
-        if ws.st.factor_tangent().is_err() {
-            break;
+        if !reuse {
+            if ws.st.factor_tangent().is_err() {
+                ws.factored_dt = None;
+                break;
+            }
+            ws.factored_dt = Some(dt);
         }
         ws.dq.copy_from_slice(&ws.g);
         let mut dq = std::mem::take(&mut ws.dq);
