@@ -181,3 +181,19 @@ fn rq_zero_motion_keeps_state() {
         assert_eq!(t.next, h, "at {w}");
     }
 }
+
+/// Linear seabed damping: `c·D·ż` in contact, nothing out of contact; its derivative is `c·D`.
+#[test]
+fn linear_damping_force_and_derivative() {
+    let lin = LinearSeabed::new(0.228, 100e3, 2e3).expect("valid");
+    let (f, df) = lin.damping_force(0.01, 0.3);
+    assert!((f - 2e3 * 0.228 * 0.3).abs() < 1e-12 && (df - 2e3 * 0.228).abs() < 1e-12);
+    assert_eq!(lin.damping_force(-0.01, 0.3), (0.0, 0.0));
+    assert_eq!(
+        LinearSeabed::new(0.228, 100e3, 0.0)
+            .expect("valid")
+            .damping_force(0.01, 0.3),
+        (0.0, 0.0)
+    );
+    assert!(LinearSeabed::new(0.228, 100e3, -1.0).is_err());
+}
