@@ -576,11 +576,7 @@ fn attempt(
     let mut last = (0, f64::INFINITY, 0);
     for it in 0..set.max_iter {
         // Kinematics from the Newmark relations; prescribed dofs from the motion.
-        for g in 0..3 * n {
-            ws.a[g] =
-                c_m * (ws.u[g] - state.u[g] - dt * state.v[g]) - (0.5 / beta - 1.0) * state.a[g];
-            ws.v[g] = state.v[g] + dt * ((1.0 - gamma) * state.a[g] + gamma * ws.a[g]);
-        }
+        newmark_kinematics(model, state, ws, dt, beta, gamma);
         for g in 0..3 * n {
             if model.equation[g].is_none() {
                 let node = g / 3;
@@ -676,13 +672,7 @@ fn attempt(
         ws.dq = dq;
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
-            for g in 0..3 * n {
-                if model.equation[g].is_some() {
-                    ws.a[g] = c_m * (ws.u[g] - state.u[g] - dt * state.v[g])
-                        - (0.5 / beta - 1.0) * state.a[g];
-                    ws.v[g] = state.v[g] + dt * ((1.0 - gamma) * state.a[g] + gamma * ws.a[g]);
-                }
-            }
+            newmark_kinematics(model, state, ws, dt, beta, gamma);
             let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
             forces(
                 model,
@@ -716,6 +706,25 @@ pub fn residual_floor(model: &LineModel) -> f64 {
             .map(|e| e.section.ea * e.section.ea)
             .sum::<f64>()
             .sqrt()
+}
+
+/// `a_{n+1}` and `v_{n+1}` on the free dofs from the iterate `u_{n+1}` (the Newmark relations).
+fn newmark_kinematics(
+    model: &LineModel,
+    state: &DynState,
+    ws: &mut DynWorkspace,
+    dt: f64,
+    beta: f64,
+    gamma: f64,
+) {
+    let c_m = 1.0 / (beta * dt * dt);
+    for (g, e) in model.equation.iter().enumerate() {
+        if e.is_some() {
+            ws.a[g] =
+                c_m * (ws.u[g] - state.u[g] - dt * state.v[g]) - (0.5 / beta - 1.0) * state.a[g];
+            ws.v[g] = state.v[g] + dt * ((1.0 - gamma) * state.a[g] + gamma * ws.a[g]);
+        }
+    }
 }
 
 fn commit(state: &mut DynState, ws: &DynWorkspace, t1: f64) {
@@ -859,23 +868,10 @@ pub fn snapshot(
     out: &mut Snapshot,
 ) {
     let n = model.nodes();
-    let ne = n - 1;
     for i in 0..n {
         out.x[i] = pl.base[3 * i] + state.u[3 * i];
         out.z[i] = pl.base[3 * i + 1] + state.u[3 * i + 1];
-        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
-        if i > 0 {
-            t += ws.st.axial[i - 1];
-            m += ws.st.moments[i - 1].1;
-            c += 1.0;
-        }
-        if i < ne {
-            t += ws.st.axial[i];
-            m += ws.st.moments[i].0;
-            c += 1.0;
-        }
-        out.tension[i] = t / c;
-        out.moment[i] = m / c;
+        (out.tension[i], out.moment[i]) = ws.st.nodal_tension_moment(i);
         out.penetration[i] = penetration(model, pl, &state.u, &state.v, i).map_or(0.0, |p| p.0);
         out.seabed_force[i] = if model.seabed.is_some() {
             ws.seabed_force[i]

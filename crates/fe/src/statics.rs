@@ -324,6 +324,24 @@ impl StaticWorkspace {
         }
     }
 
+    /// Tension and bending moment at node `i` from the last assembly: the means of the adjacent
+    /// elements' axial forces and of their internal moments at that node.
+    pub fn nodal_tension_moment(&self, i: usize) -> (f64, f64) {
+        let ne = self.axial.len();
+        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
+        if i > 0 {
+            t += self.axial[i - 1];
+            m += self.moments[i - 1].1;
+            c += 1.0;
+        }
+        if i < ne {
+            t += self.axial[i];
+            m += self.moments[i].0;
+            c += 1.0;
+        }
+        (t / c, m / c)
+    }
+
     /// Numeric factorisation of the tangent last assembled.
     pub fn factor_tangent(&mut self) -> Result<(), SolveError> {
         self.solver.factor(&self.k)
@@ -677,7 +695,6 @@ pub fn line_results(
     ws.assemble(model, pl, u, false);
     let q = pl.absolute(u);
     let n = model.nodes();
-    let ne = n - 1;
     let mut r = LineResults {
         arc: model.arc.clone(),
         x: (0..n).map(|i| q[3 * i]).collect(),
@@ -689,19 +706,7 @@ pub fn line_results(
         seabed_force: vec![0.0; n],
     };
     for i in 0..n {
-        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
-        if i > 0 {
-            t += ws.axial[i - 1];
-            m += ws.moments[i - 1].1;
-            c += 1.0;
-        }
-        if i < ne {
-            t += ws.axial[i];
-            m += ws.moments[i].0;
-            c += 1.0;
-        }
-        r.tension[i] = t / c;
-        r.moment[i] = m / c;
+        (r.tension[i], r.moment[i]) = ws.nodal_tension_moment(i);
         if let Some(p) = model.penetration(i, q[3 * i + 1]) {
             r.penetration[i] = p;
             r.seabed_force[i] = if p > 0.0 { force_at(i, p) } else { 0.0 };
