@@ -598,21 +598,16 @@ fn attempt(
         // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
         // step instead of two; later iterations are full Newton.
         let reuse = it == 0 && ws.factored_dt == Some(dt);
-        let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
-        forces(
+        forces_at_iterate(
             model,
             pl,
             hydro,
-            &u,
-            &v,
             &state.history,
             ws,
             !reuse,
             1.0 + alpha,
             c_v,
         );
-        ws.u = u;
-        ws.v = v;
         // Residual G = M a + (1+α) F − α F_n on the free equations.
         for i in 0..n {
             let m = ws.mass[i];
@@ -673,21 +668,16 @@ fn attempt(
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             newmark_kinematics(model, state, ws, dt, beta, gamma);
-            let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
-            forces(
+            forces_at_iterate(
                 model,
                 pl,
                 hydro,
-                &u,
-                &v,
                 &state.history,
                 ws,
                 false,
                 1.0 + alpha,
                 c_v,
             );
-            ws.u = u;
-            ws.v = v;
             commit(state, ws, t1);
             return Ok(());
         }
@@ -706,6 +696,26 @@ pub fn residual_floor(model: &LineModel) -> f64 {
             .map(|e| e.section.ea * e.section.ea)
             .sum::<f64>()
             .sqrt()
+}
+
+/// [`forces`] at the workspace's current iterate `(ws.u, ws.v)`.
+#[allow(clippy::too_many_arguments)]
+fn forces_at_iterate(
+    model: &LineModel,
+    pl: &Placement,
+    hydro: Option<&Hydro>,
+    committed: &[SeabedHistory],
+    ws: &mut DynWorkspace,
+    with_k: bool,
+    k_scale: f64,
+    c_v: f64,
+) {
+    let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
+    forces(
+        model, pl, hydro, &u, &v, committed, ws, with_k, k_scale, c_v,
+    );
+    ws.u = u;
+    ws.v = v;
 }
 
 /// `a_{n+1}` and `v_{n+1}` on the free dofs from the iterate `u_{n+1}` (the Newmark relations).
