@@ -375,6 +375,8 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
             "moment_max": finite_or_null(&r.envelopes.moment_max),
             "tension_min": finite_or_null(&r.envelopes.tension_min),
             "tension_max": finite_or_null(&r.envelopes.tension_max),
+            "moment_range": finite_or_null(&r.envelopes.moment_range()),
+            "tension_range": finite_or_null(&r.envelopes.tension_range()),
             "penetration_max": finite_or_null(&r.envelopes.penetration_max),
         }
     });

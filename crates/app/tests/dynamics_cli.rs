@@ -193,13 +193,17 @@ fn run_writes_dynamic_layout() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
             .expect("json");
     assert_eq!(js["dynamic"]["completed"], true);
-    assert_eq!(
-        js["dynamic"]["envelopes"]["moment_min"]
-            .as_array()
-            .expect("array")
-            .len(),
-        401
-    );
+    for key in [
+        "moment_min",
+        "moment_max",
+        "moment_range",
+        "tension_min",
+        "tension_max",
+        "tension_range",
+    ] {
+        let v = js["dynamic"]["envelopes"][key].as_array().expect(key);
+        assert_eq!(v.len(), 401, "{key}");
+    }
     for png in ["static.png", "dynamic.png"] {
         assert!(std::fs::metadata(out.join(png)).expect(png).len() > 10_000);
     }
