@@ -161,3 +161,23 @@ fn bad_scenes_name_file_and_key() {
         }
     }
 }
+
+/// A static solve that cannot converge (one Newton iteration allowed) cuts its load increments and
+/// then reports the load factor, iteration, residual, node and arc length, naming the file.
+#[test]
+fn static_non_convergence_is_reported_with_context() {
+    let good =
+        std::fs::read_to_string(root().join("cases/benchmarks/scr-heave.toml")).expect("case");
+    let text = format!("{good}\n[static]\nmax_iterations = 1\n");
+    let err = run_bad("no_converge.toml", &text);
+    for needle in [
+        "did not converge",
+        "load factor",
+        "iteration",
+        "relative residual",
+        "node",
+        "arc length",
+    ] {
+        assert!(err.contains(needle), "`{needle}` missing from: {err}");
+    }
+}
