@@ -41,6 +41,12 @@ enum Command {
         /// Do not show a progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Write DIR/checkpoint.json every N time steps (replacing the previous one).
+        #[arg(long, value_name = "N")]
+        checkpoint_every: Option<u64>,
+        /// Continue from a checkpoint written by an earlier run of the same scene.
+        #[arg(long, value_name = "FILE")]
+        restart: Option<PathBuf>,
     },
     /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
     /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
@@ -69,8 +75,15 @@ fn main() -> ExitCode {
             };
             catena::soil_test::command(&case, &out, plot.as_deref()).map(|r| print!("{}", r.text))
         }
-        Command::Run { case, out, quiet } => {
-            catena::run_cmd::command(&case, &out, !quiet).map(|t| print!("{t}"))
+        Command::Run {
+            case,
+            out,
+            quiet,
+            checkpoint_every,
+            restart,
+        } => {
+            catena::run_cmd::command_with(&case, &out, !quiet, checkpoint_every, restart.as_deref())
+                .map(|t| print!("{t}"))
         }
         Command::Static { case, out } => {
             catena::statics_cmd::command(&case, &out).map(|t| print!("{t}"))

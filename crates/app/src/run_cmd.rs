@@ -142,12 +142,80 @@ pub fn resolve_gauges(statics: &StaticRun, spec: &mut DynamicSpec) -> Result<(),
     Ok(())
 }
 
+/// A checkpoint: everything a restart needs besides the Model, which is rebuilt from the scene.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Checkpoint {
+    /// The catena version that wrote it.
+    pub catena_version: String,
+    /// The scene's text (a restart must use the same scene).
+    pub scene: String,
+    /// The number of completed time steps of `dynamic.time_step`.
+    pub step: u64,
+    /// The State.
+    pub state: dynamics::DynState,
+}
+
+impl Checkpoint {
+    /// Writes the checkpoint as JSON (exact: floats round-trip), replacing the file atomically.
+    pub fn write(&self, path: &Path) -> Result<(), AppError> {
+        let tmp = path.with_extension("json.tmp");
+        let text = serde_json::to_string(self).map_err(|e| AppError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e.to_string()),
+        })?;
+        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
+        std::fs::rename(&tmp, path).map_err(|e| AppError::io(path, e))
+    }
+
+    /// Reads a checkpoint.
+    pub fn read(path: &Path) -> Result<Self, AppError> {
+        let text = std::fs::read_to_string(path).map_err(|e| AppError::io(path, e))?;
+        serde_json::from_str(&text).map_err(|e| AppError::Run {
+            file: path.display().to_string(),
+            message: format!("not a catena checkpoint: {e}"),
+        })
+    }
+}
+
+/// Options of a dynamic run.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Show a progress bar.
+    pub progress: bool,
+    /// Write a checkpoint every this many steps to `checkpoint_path`.
+    pub checkpoint_every: Option<u64>,
+    /// Where checkpoints go.
+    pub checkpoint_path: Option<std::path::PathBuf>,
+    /// Continue from this checkpoint instead of the statics.
+    pub restart: Option<Checkpoint>,
+    /// Stop (successfully) after this many time steps, e.g. to end a job at a checkpoint.
+    pub stop_after: Option<u64>,
+}
+
 /// Runs statics then dynamics, streaming records to `recorder` if given.
 pub fn run(
     statics: StaticRun,
-    mut recorder: Option<&mut Recorder>,
+    recorder: Option<&mut Recorder>,
     progress: bool,
 ) -> Result<DynamicRun, AppError> {
+    run_with(
+        statics,
+        recorder,
+        RunOptions {
+            progress,
+            ..RunOptions::default()
+        },
+    )
+}
+
+/// Runs the dynamics with checkpoint and restart options (see [`RunOptions`]). A restarted run
+/// records and takes envelopes from its restart time on.
+pub fn run_with(
+    statics: StaticRun,
+    mut recorder: Option<&mut Recorder>,
+    opts: RunOptions,
+) -> Result<DynamicRun, AppError> {
+    let progress = opts.progress;
     let mut spec = statics.scene.dynamic.clone().ok_or_else(|| AppError::Run {
         file: statics.scene.file.clone(),
         message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
@@ -200,10 +268,29 @@ pub fn run(
         }
         Ok(())
     };
-    dynamics::snapshot(model, pl, &state, &ws, &mut snap);
-    record(&state, &snap, &mut hist, &mut gauge_vals, &mut recorder)?;
-    if spec.envelope_start <= 0.0 {
-        env.update(&snap);
+    let mut first_step = 1;
+    if let Some(cp) = &opts.restart {
+        if cp.scene != statics.scene.text {
+            return Err(AppError::Run {
+                file: statics.scene.file.clone(),
+                message: "the checkpoint was written for a different scene (its text differs)"
+                    .into(),
+            });
+        }
+        if cp.state.u.len() != state.u.len() || cp.state.history.len() != state.history.len() {
+            return Err(AppError::Run {
+                file: statics.scene.file.clone(),
+                message: "the checkpoint does not fit this model (its node count differs)".into(),
+            });
+        }
+        state = cp.state.clone();
+        first_step = cp.step + 1;
+    } else {
+        dynamics::snapshot(model, pl, &state, &ws, &mut snap);
+        record(&state, &snap, &mut hist, &mut gauge_vals, &mut recorder)?;
+        if spec.envelope_start <= 0.0 {
+            env.update(&snap);
+        }
     }
     let n_steps = (spec.duration / spec.dt).round() as u64;
     let bar = if progress {
@@ -220,7 +307,7 @@ pub fn run(
     };
     let (mut iterations, mut cuts) = (0usize, 0u32);
     let mut error = None;
-    for k in 1..=n_steps {
+    for k in first_step..=n_steps {
         match dynamics::advance(model, pl, set, &mut state, &mut ws, spec.dt) {
             Ok(info) => {
                 iterations += info.iterations;
@@ -232,6 +319,21 @@ pub fn run(
                 }
                 if k as usize % spec.output_every == 0 {
                     record(&state, &snap, &mut hist, &mut gauge_vals, &mut recorder)?;
+                }
+                if let (Some(every), Some(path)) = (opts.checkpoint_every, &opts.checkpoint_path) {
+                    if every > 0 && k % every == 0 {
+                        Checkpoint {
+                            catena_version: env!("CARGO_PKG_VERSION").to_string(),
+                            scene: statics.scene.text.clone(),
+                            step: k,
+                            state: state.clone(),
+                        }
+                        .write(path)?;
+                        ws.forget_factorisation();
+                    }
+                }
+                if opts.stop_after == Some(k) {
+                    break;
                 }
             }
             Err(e) => {
@@ -439,6 +541,19 @@ pub fn summary_text(r: &DynamicRun) -> String {
 
 /// The whole command.
 pub fn command(case: &Path, out: &Path, progress: bool) -> Result<String, AppError> {
+    command_with(case, out, progress, None, None)
+}
+
+/// The whole command with checkpoints every `checkpoint_every` steps (to `DIR/checkpoint.json`) and/or
+/// a restart from a checkpoint file.
+pub fn command_with(
+    case: &Path,
+    out: &Path,
+    progress: bool,
+    checkpoint_every: Option<u64>,
+    restart: Option<&Path>,
+) -> Result<String, AppError> {
+    let restart = restart.map(Checkpoint::read).transpose()?;
     let scene = statics_cmd::read_scene(case)?;
     if scene.dynamic.is_none() {
         return Err(AppError::Run {
@@ -460,7 +575,17 @@ pub fn command(case: &Path, out: &Path, progress: bool) -> Result<String, AppErr
         &statics.scene.title,
         &statics.results,
     )?;
-    let r = run(statics, Some(&mut rec), progress)?;
+    let r = run_with(
+        statics,
+        Some(&mut rec),
+        RunOptions {
+            progress,
+            checkpoint_every,
+            checkpoint_path: Some(out.join("checkpoint.json")),
+            restart,
+            stop_after: None,
+        },
+    )?;
     let js = out.join("summary.json");
     std::fs::write(
         &js,

@@ -343,6 +343,15 @@ impl DynWorkspace {
     }
 }
 
+impl DynWorkspace {
+    /// Drops the factorisation kept for reuse: the next step starts with a full Newton iteration.
+    /// Done at checkpoints, so that a run restored from one (whose new workspace has nothing to
+    /// reuse) continues bit-for-bit like the uninterrupted run.
+    pub fn forget_factorisation(&mut self) {
+        self.factored_dt = None;
+    }
+}
+
 /// The penetration of node `i` and its rate (positive down).
 #[inline]
 fn penetration(
