@@ -31,6 +31,8 @@ pub struct Envelopes {
     pub tension_max: Vec<f64>,
     /// Maximum penetration, m.
     pub penetration_max: Vec<f64>,
+    /// Minimum penetration, m (negative: clear of the seabed).
+    pub penetration_min: Vec<f64>,
 }
 
 impl Envelopes {
@@ -41,6 +43,7 @@ impl Envelopes {
             tension_min: vec![f64::INFINITY; n],
             tension_max: vec![f64::NEG_INFINITY; n],
             penetration_max: vec![f64::NEG_INFINITY; n],
+            penetration_min: vec![f64::INFINITY; n],
         }
     }
     fn update(&mut self, s: &Snapshot) {
@@ -50,6 +53,7 @@ impl Envelopes {
             self.tension_min[i] = self.tension_min[i].min(s.tension[i]);
             self.tension_max[i] = self.tension_max[i].max(s.tension[i]);
             self.penetration_max[i] = self.penetration_max[i].max(s.penetration[i]);
+            self.penetration_min[i] = self.penetration_min[i].min(s.penetration[i]);
         }
     }
     /// The moment range at each node.
@@ -480,6 +484,7 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
             "moment_range": finite_or_null(&r.envelopes.moment_range()),
             "tension_range": finite_or_null(&r.envelopes.tension_range()),
             "penetration_max": finite_or_null(&r.envelopes.penetration_max),
+            "penetration_min": finite_or_null(&r.envelopes.penetration_min),
         }
     });
     js

@@ -1,0 +1,208 @@
+//! The stability suite (issue 5): hard cases under `cases/hard/` run to the end (or stop with a clear
+//! error), never with NaN or a hang, and each has a check that a broken solver would fail.
+//! `validation/hard-cases.md` records what each tests, its step cuts and its cost.
+
+use std::path::{Path, PathBuf};
+
+use catena::run_cmd::{self, DynamicRun};
+use catena::scene::riser::RiserScene;
+use catena::statics_cmd;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
+    let text =
+        edit(std::fs::read_to_string(root().join(format!("cases/{name}.toml"))).expect("case"));
+    let st = statics_cmd::solve(RiserScene::parse(name, &text).expect("scene")).expect("statics");
+    let r = run_cmd::run(st, None, false).expect("runs");
+    assert!(r.error.is_none(), "{name}: {:?}", r.error);
+    let e = &r.envelopes;
+    for v in [
+        &e.moment_min,
+        &e.moment_max,
+        &e.tension_min,
+        &e.tension_max,
+        &e.penetration_max,
+    ] {
+        assert!(
+            v.iter().all(|x| x.is_finite()),
+            "{name}: non-finite envelope"
+        );
+    }
+    assert!(
+        r.hist
+            .top_tension
+            .iter()
+            .all(|t| t.is_finite() && *t < 20e6),
+        "{name}: top tension"
+    );
+    println!(
+        "{name}: {} converged steps, {} Newton iterations ({:.2} per step), {} step cuts, {:.2} s",
+        r.steps,
+        r.iterations,
+        r.iterations as f64 / r.steps.max(1) as f64,
+        r.cuts,
+        r.wall_seconds
+    );
+    r
+}
+
+/// Stiff, sticky soil (Kmax 1000, f_suc 1, λsuc 2) under a 5 m, 6 s heave: repeated lift-off and
+/// re-contact. Nodes that rest on the seabed in the statics lift off; the resting far field (arc ≥
+/// 1300 m) stays within 1.5 times its static penetration plus 0.1D (a solver that ratchets the soil,
+/// e.g. by committing Newton iterates or chattering, drives it down), and the slammed touchdown zone
+/// stays above 3 m. Shortened to 24 s in CI.
+#[test]
+fn sticky_soil_lift_off_and_recontact() {
+    let r = run_case("hard/sticky-soil", |t| {
+        t.replace("duration = 60.0", "duration = 24.0")
+            .replace("envelope_start = 30.0", "envelope_start = 0.0")
+    });
+    let stat = &r.statics.results.penetration;
+    let e = &r.envelopes;
+    let lifted = (0..stat.len())
+        .filter(|&i| stat[i] > 0.0 && e.penetration_min[i] < 0.0)
+        .count();
+    assert!(lifted > 10, "lift-off at {lifted} nodes");
+    for i in 0..stat.len() {
+        // The touchdown zone is lifted clear and slammed back each cycle (to ~2.5 m here, bounded
+        // from cycle to cycle: validation/hard-cases.md); the resting far field must not ratchet.
+        let bound = if r.statics.model.arc[i] >= 1300.0 {
+            1.5 * stat[i] + 0.1 * 0.2286
+        } else {
+            3.0
+        };
+        assert!(
+            e.penetration_max[i] <= bound,
+            "node {i}: {} (static {})",
+            e.penetration_max[i],
+            stat[i]
+        );
+    }
+}
+
+/// The heave benchmark with Δt = 0.2 s: still converges, and its ranges over t ∈ [50, 100] s stay
+/// within 1 % (top tension) and 2 % (moment) of the Δt = 0.05 s run.
+#[test]
+fn large_time_step() {
+    let big = run_case("hard/large-step", |t| t);
+    let small = run_case("benchmarks/scr-heave", |t| t);
+    let (m1, _, a1, b1) = run_cmd::key_numbers(&big);
+    let (m2, _, a2, b2) = run_cmd::key_numbers(&small);
+    assert!(
+        ((b1 - a1) / (b2 - a2) - 1.0).abs() < 0.01,
+        "{} vs {}",
+        b1 - a1,
+        b2 - a2
+    );
+    assert!((m1 / m2 - 1.0).abs() < 0.02, "{m1} vs {m2}");
+}
+
+/// Violent heave (8 m, 8 s): the riser near touchdown goes into compression (negative effective
+/// tension), and the run still completes.
+#[test]
+fn violent_heave_into_compression() {
+    let r = run_case("hard/violent-heave", |t| t);
+    let min_t = r
+        .envelopes
+        .tension_min
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    println!(
+        "violent heave: minimum effective tension {:.1} kN",
+        min_t / 1e3
+    );
+    assert!(min_t < 0.0, "compression expected: {min_t}");
+}
+
+/// A near-vertical riser (2° top angle) heaved: it converges without cuts at a normal cost.
+#[test]
+fn near_vertical_riser() {
+    let r = run_case("hard/near-vertical", |t| t);
+    assert!(r.statics.summary.top_angle_from_vertical.to_degrees() < 2.5);
+    assert!(r.iterations as f64 / r.steps as f64 <= 4.0);
+}
+
+/// A riser hanging clear of the seabed (touching it only at its anchor) is lowered by 120 m and lands:
+/// nodes 100 m from the anchor penetrate the seabed during the run.
+#[test]
+fn riser_lands_on_the_seabed() {
+    let r = run_case("hard/landing", |t| t);
+    assert!(r.statics.summary.touchdown_arc.expect("anchor contact") > 1390.0);
+    let i = r
+        .statics
+        .model
+        .arc
+        .iter()
+        .position(|a| *a >= 1300.0)
+        .expect("node");
+    assert!(r.statics.results.penetration[i] < 0.0, "clear at the start");
+    assert!(
+        r.envelopes.penetration_max[i] > 0.0,
+        "landed: {}",
+        r.envelopes.penetration_max[i]
+    );
+}
+
+/// Steps in the top velocity (0 → +1 → −1 → 0 m/s): the run completes and the top ends exactly
+/// where it started.
+#[test]
+fn velocity_steps() {
+    let r = run_case("hard/velocity-step", |t| t);
+    let z = *r.hist.top_z.last().expect("records");
+    assert!((z - 1000.0).abs() < 1e-9, "{z}");
+}
+
+/// Three hours of the heave benchmark (216 000 steps, about 2 minutes): the top tension's mean and
+/// range in the last 100 s equal those of t ∈ [50, 150] s (drift-free, to 0.5 %), and the
+/// penetration stays within 10 % of its envelope after 150 s. Ignored in CI (long); run with
+/// `cargo test --release -p catena --test hard_cases -- --ignored`.
+#[test]
+#[ignore]
+fn three_hour_heave_benchmark() {
+    let r = run_case("benchmarks/scr-heave", |t| {
+        t.replace("duration = 100.0", "duration = 10800.0")
+            .replace("envelope_start = 50.0", "envelope_start = 0.0")
+    });
+    let h = &r.hist;
+    let window = |a: f64, b: f64| {
+        let v: Vec<f64> =
+            h.t.iter()
+                .zip(&h.top_tension)
+                .filter(|(t, _)| **t >= a && **t < b)
+                .map(|(_, v)| *v)
+                .collect();
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let range = v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            - v.iter().copied().fold(f64::INFINITY, f64::min);
+        (mean, range)
+    };
+    let (m0, r0) = window(50.0, 150.0);
+    let (m1, r1) = window(10700.0, 10800.0);
+    println!(
+        "3 h: top tension mean {:.2} → {:.2} kN, range {:.2} → {:.2} kN",
+        m0 / 1e3,
+        m1 / 1e3,
+        r0 / 1e3,
+        r1 / 1e3
+    );
+    assert!((m1 / m0 - 1.0).abs() < 5e-3 && (r1 / r0 - 1.0).abs() < 5e-3);
+    let pmax = r
+        .envelopes
+        .penetration_max
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    let pstat = r
+        .statics
+        .results
+        .penetration
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    println!("3 h: max penetration {:.5} m (static {:.5} m)", pmax, pstat);
+    assert!(pmax < 1.5 * pstat);
+}
