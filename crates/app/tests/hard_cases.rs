@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! The stability suite (issue 5): hard cases under `cases/hard/` run to the end (or stop with a clear
 //! error), never with NaN or a hang, and each has a check that a broken solver would fail.
 //! `validation/hard-cases.md` records what each tests, its step cuts and its cost.
