@@ -209,6 +209,15 @@ pub fn soil_test(
     Ok(())
 }
 
+/// How a panel draws its series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Marks {
+    /// Connected lines.
+    Lines,
+    /// Separate dots.
+    Points,
+}
+
 /// Draws one panel: `series` of (x, y) lines with a caption and axis labels.
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -216,6 +225,18 @@ fn panel<DB: DrawingBackend>(
     xlabel: &str,
     ylabel: &str,
     series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    marked_panel(area, caption, xlabel, ylabel, series, Marks::Lines)
+}
+
+/// Draws one panel of lines or dots, scaled to the finite data (a unit box if there is none).
+fn marked_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+    marks: Marks,
 ) -> Result<(), String> {
     let pts = series.iter().flat_map(|(v, _)| v.iter());
     let (mut x0, mut x1, mut y0, mut y1) = (
@@ -238,7 +259,7 @@ fn panel<DB: DrawingBackend>(
     let (x0, x1) = padded(x0, x1);
     let (y0, y1) = padded(y0, y1);
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 20))
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75)
@@ -252,9 +273,15 @@ fn panel<DB: DrawingBackend>(
         .draw()
         .map_err(|e| e.to_string())?;
     for (v, c) in series {
-        chart
-            .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
-            .map_err(|e| e.to_string())?;
+        match marks {
+            Marks::Lines => chart
+                .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+                .map(|_| ()),
+            Marks::Points => chart
+                .draw_series(v.iter().map(|p| Circle::new(*p, 2, c.filled())))
+                .map(|_| ()),
+        }
+        .map_err(|e| e.to_string())?;
     }
     Ok(())
 }
@@ -443,56 +470,16 @@ pub fn gauges(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppErro
             "{}: gauge {} (arc {:.2} m): red pull-up, blue lay-down",
             r.statics.scene.title, g.name, g.arc
         );
-        scatter_panel(
+        marked_panel(
             &areas[k],
             &caption,
             "top height above the mudline (m)",
             "bending moment (kN·m)",
             &series,
+            Marks::Points,
         )
         .map_err(perr)?;
     }
     root.present().map_err(&err)?;
-    Ok(())
-}
-
-fn scatter_panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    caption: &str,
-    xlabel: &str,
-    ylabel: &str,
-    series: &[(Vec<(f64, f64)>, RGBColor)],
-) -> Result<(), String> {
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|(v, _)| v.iter().copied()).collect();
-    let (x0, x1) = padded(
-        all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
-        all.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
-    );
-    let (y0, y1) = padded(
-        all.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
-        all.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
-    );
-    if !(x0.is_finite() && y0.is_finite()) {
-        return Ok(());
-    }
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 16))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(xlabel)
-        .y_desc(ylabel)
-        .label_style(("sans-serif", 14))
-        .draw()
-        .map_err(|e| e.to_string())?;
-    for (v, c) in series {
-        chart
-            .draw_series(v.iter().map(|p| Circle::new(*p, 2, c.filled())))
-            .map_err(|e| e.to_string())?;
-    }
     Ok(())
 }
