@@ -106,6 +106,8 @@ pub struct DynamicRun {
     pub iterations: usize,
     /// Step cuts in all.
     pub cuts: u32,
+    /// Predictor retries in all (see `catena_fe::dynamics`).
+    pub retries: u32,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
     /// The error that stopped the run early, if any.
@@ -309,13 +311,14 @@ pub fn run_with(
     } else {
         None
     };
-    let (mut iterations, mut cuts) = (0usize, 0u32);
+    let (mut iterations, mut cuts, mut retries) = (0usize, 0u32, 0u32);
     let mut error = None;
     for k in first_step..=n_steps {
         match dynamics::advance(model, pl, set, &mut state, &mut ws, spec.dt) {
             Ok(info) => {
                 iterations += info.iterations;
                 cuts += info.cuts;
+                retries += info.retries;
                 state.t = k as f64 * spec.dt;
                 dynamics::snapshot(model, pl, &state, &ws, &mut snap);
                 if state.t >= spec.envelope_start - 1e-9 * spec.dt {
@@ -366,6 +369,7 @@ pub fn run_with(
         hist,
         iterations,
         cuts,
+        retries,
         wall_seconds: t0.elapsed().as_secs_f64(),
         error,
     })
@@ -467,6 +471,7 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
         "newton_iterations": r.iterations,
         "iterations_per_step": r.iterations as f64 / (r.steps.max(1) as f64),
         "step_cuts": r.cuts,
+        "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
         "envelope_start": r.spec.envelope_start,
         "max_moment_range": mr,
@@ -496,7 +501,7 @@ pub fn summary_text(r: &DynamicRun) -> String {
     let (mr, at, tmin, tmax) = key_numbers(r);
     let _ = writeln!(
         t,
-        "dynamic: {:.1} s in {} steps of {} s ({:?}); {} Newton iterations ({:.2} per step), {} step cuts; {:.2} s wall",
+        "dynamic: {:.1} s in {} steps of {} s ({:?}); {} Newton iterations ({:.2} per step), {} step cuts, {} predictor retries; {:.2} s wall",
         r.spec.duration,
         r.steps,
         r.spec.dt,
@@ -504,6 +509,7 @@ pub fn summary_text(r: &DynamicRun) -> String {
         r.iterations,
         r.iterations as f64 / r.steps.max(1) as f64,
         r.cuts,
+        r.retries,
         r.wall_seconds
     );
     let _ = writeln!(t, "  from t = {} s:", r.spec.envelope_start);
