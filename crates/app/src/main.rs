@@ -48,6 +48,28 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         restart: Option<PathBuf>,
     },
+    /// What accuracy costs in time: the scene re-run with its element lengths and its time step
+    /// scaled (by default x2, x1, x1/2, x1/4 each). Reports the key outputs with their errors
+    /// (Richardson) and each run's wall time; writes DIR/convergence.csv, .json and .png.
+    Convergence {
+        /// The scene file (TOML) with a [dynamic] table.
+        case: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Element-length factors, comma-separated.
+        #[arg(long, value_delimiter = ',', default_values_t = [2.0, 1.0, 0.5, 0.25])]
+        mesh_factors: Vec<f64>,
+        /// Time-step factors, comma-separated.
+        #[arg(long, value_delimiter = ',', default_values_t = [2.0, 1.0, 0.5, 0.25])]
+        dt_factors: Vec<f64>,
+        /// Runs at once (default 1, so that the wall times are honest).
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
+        /// Do not print a line per run.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
     /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
     Static {
@@ -85,6 +107,24 @@ fn main() -> ExitCode {
             catena::run_cmd::command_with(&case, &out, !quiet, checkpoint_every, restart.as_deref())
                 .map(|t| print!("{t}"))
         }
+        Command::Convergence {
+            case,
+            out,
+            mesh_factors,
+            dt_factors,
+            jobs,
+            quiet,
+        } => catena::convergence::command(
+            &case,
+            &out,
+            &catena::convergence::ConvergenceOptions {
+                mesh_factors,
+                dt_factors,
+                jobs,
+                progress: !quiet,
+            },
+        )
+        .map(|t| print!("{t}")),
         Command::Static { case, out } => {
             catena::statics_cmd::command(&case, &out).map(|t| print!("{t}"))
         }
