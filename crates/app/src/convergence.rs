@@ -8,10 +8,11 @@
 //! them can be run alone with `catena run`.
 //!
 //! **Key outputs** of each run (from `dynamic.envelope_start`):
-//! - the touchdown-zone moment range: the largest per-node range of the bending moment among the
-//!   nodes within 3λ of the nodes that both touched the seabed and left it during the window
-//!   (λ = √(EI/H), the boundary-layer length at touchdown; if no node changed contact, the nodes in
-//!   contact); without a seabed, the largest moment range on the line;
+//! - the touchdown-zone moment range: the largest per-node range of the bending moment over the arc
+//!   between the first and the last node that both touched the seabed and left it during the window
+//!   (if no node changed contact, the nodes in contact); without a seabed, the largest moment range
+//!   on the line. (A margin of a few boundary-layer lengths √(EI/H) would reach into Watchet's sag
+//!   bend, whose larger range then sets the value at the margin's edge.)
 //! - the top-tension range and the top-tension maximum;
 //! - with a seabed, the largest penetration;
 //! - for each gauge, its least and greatest bending moment (the whole run).
@@ -255,9 +256,7 @@ pub fn touchdown_zone(r: &DynamicRun) -> Option<(f64, f64)> {
         idx = (0..arc.len()).filter(|&i| touched(i)).collect();
     }
     let (first, last) = (*idx.first()?, *idx.last()?);
-    let h = r.statics.summary.horizontal_tension.abs().max(1.0);
-    let lambda = (r.statics.scene.line.1 / h).sqrt();
-    Some((arc[first] - 3.0 * lambda, arc[last] + 3.0 * lambda))
+    Some((arc[first], arc[last]))
 }
 
 /// The key outputs of a run, in the order and units of [`output_defs`].
@@ -804,14 +803,23 @@ pub fn plot(path: &Path, st: &Study) -> Result<(), AppError> {
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5).log_scale(),
-                (y0 / 3.0..y1 * 3.0).log_scale(),
+                (x0 / 1.5..x1 * 1.5)
+                    .log_scale()
+                    .with_key_points(one_two_five(x0 / 1.5, x1 * 1.5)),
+                (y0 / 3.0..y1 * 3.0)
+                    .log_scale()
+                    .with_key_points(one_two_five(y0 / 3.0, y1 * 3.0)),
             )
             .map_err(&err)?;
         chart
             .configure_mesh()
             .x_desc("wall time of the run (s)")
             .y_desc("|error| (%)")
+            .x_labels(6)
+            .y_labels(6)
+            .x_label_formatter(&|v| short(*v))
+            .y_label_formatter(&|v| short(*v))
+            .max_light_lines(1)
             .label_style(("sans-serif", 13))
             .draw()
             .map_err(&err)?;
@@ -837,6 +845,36 @@ pub fn plot(path: &Path, st: &Study) -> Result<(), AppError> {
     }
     root.present().map_err(&err)?;
     Ok(())
+}
+
+/// Axis key points 1, 2, 5 × 10ᵏ within `[lo, hi]`.
+fn one_two_five(lo: f64, hi: f64) -> Vec<f64> {
+    let mut v = Vec::new();
+    let mut k = lo.log10().floor() as i32;
+    while 10f64.powi(k) <= hi && k < 300 {
+        for m in [1.0, 2.0, 5.0] {
+            let x = m * 10f64.powi(k);
+            if x >= lo && x <= hi {
+                v.push(x);
+            }
+        }
+        k += 1;
+    }
+    v
+}
+
+/// A short axis label: `0.001`, `0.5`, `2`, `30`.
+fn short(v: f64) -> String {
+    if v <= 0.0 || !v.is_finite() {
+        return String::new();
+    }
+    let decimals = (-v.log10()).ceil().max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }
 
 /// A plotted point: (wall time s, |error| %, factor).
