@@ -129,6 +129,9 @@ pub struct VariantRun {
     pub values: Vec<f64>,
     /// Why the run stopped early, if it did.
     pub error: Option<String>,
+    /// The variant scene's TOML.
+    #[serde(skip)]
+    pub scene_text: String,
 }
 
 /// The Richardson analysis of one output along one series.
@@ -294,8 +297,9 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
         v.push(p * 1e3);
     }
     for m in &r.hist.gauge_moment {
-        v.push(m.iter().copied().fold(f64::INFINITY, f64::min) * 1e-3);
-        v.push(m.iter().copied().fold(f64::NEG_INFINITY, f64::max) * 1e-3);
+        let (lo, hi) = run_cmd::extremes(m);
+        v.push(lo * 1e-3);
+        v.push(hi * 1e-3);
     }
     v
 }
@@ -358,7 +362,7 @@ fn run_variant(
     text: &str,
     mesh_factor: f64,
     dt_factor: f64,
-) -> Result<(VariantRun, String), AppError> {
+) -> Result<VariantRun, AppError> {
     let vtext = variant_text(file, text, mesh_factor, dt_factor)?;
     let scene = RiserScene::parse(file, &vtext)?;
     let elements = scene.model.elements.len();
@@ -377,22 +381,20 @@ fn run_variant(
     } else {
         vec![f64::NAN; output_defs(&r.statics.scene).len()]
     };
-    Ok((
-        VariantRun {
-            mesh_factor,
-            dt_factor,
-            elements,
-            min_element_length: min_el,
-            dt: r.spec.dt,
-            steps: r.steps,
-            newton_iterations: r.iterations,
-            step_cuts: r.cuts,
-            wall_seconds: wall,
-            values,
-            error: r.error.clone(),
-        },
-        vtext,
-    ))
+    Ok(VariantRun {
+        mesh_factor,
+        dt_factor,
+        elements,
+        min_element_length: min_el,
+        dt: r.spec.dt,
+        steps: r.steps,
+        newton_iterations: r.iterations,
+        step_cuts: r.cuts,
+        wall_seconds: wall,
+        values,
+        error: r.error.clone(),
+        scene_text: vtext,
+    })
 }
 
 /// The result of a study.
@@ -408,8 +410,6 @@ pub struct Study {
     pub runs: Vec<VariantRun>,
     /// Per output: the mesh series and the Δt series.
     pub analyses: Vec<(SeriesAnalysis, SeriesAnalysis)>,
-    /// The variant scene texts, in the order of `runs`.
-    pub texts: Vec<String>,
 }
 
 impl Study {
@@ -477,7 +477,7 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
         let r = run_variant(&file, &text, mf, df);
         if opts.progress {
             match &r {
-                Ok((v, _)) => eprintln!(
+                Ok(v) => eprintln!(
                     "  element length x{mf}, time step x{df}: {} elements, dt {} s, {} steps, {} cuts, {:.2} s{}",
                     v.elements,
                     v.dt,
@@ -491,7 +491,7 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
         }
         r
     };
-    let results: Vec<Result<(VariantRun, String), AppError>> = if opts.jobs > 1 {
+    let results: Vec<Result<VariantRun, AppError>> = if opts.jobs > 1 {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(opts.jobs)
             .build()
@@ -503,13 +503,7 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
     } else {
         pairs.iter().map(one).collect()
     };
-    let mut runs = Vec::new();
-    let mut texts = Vec::new();
-    for r in results {
-        let (run, t) = r?;
-        runs.push(run);
-        texts.push(t);
-    }
+    let runs = results.into_iter().collect::<Result<Vec<_>, _>>()?;
     let outputs = output_defs(&scene);
     let mut st = Study {
         file,
@@ -517,7 +511,6 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
         outputs,
         runs,
         analyses: Vec::new(),
-        texts,
     };
     let an = |s: Series, k: usize| {
         let runs = st.series(s);
@@ -896,12 +889,12 @@ pub fn command(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result<Str
     let stem = case
         .file_stem()
         .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
-    for (r, text) in st.runs.iter().zip(&st.texts) {
+    for r in &st.runs {
         let p = out.join("scenes").join(format!(
             "{stem}-mesh{}-dt{}.toml",
             r.mesh_factor, r.dt_factor
         ));
-        std::fs::write(&p, text).map_err(|e| AppError::io(&p, e))?;
+        std::fs::write(&p, &r.scene_text).map_err(|e| AppError::io(&p, e))?;
     }
     let c = out.join("convergence.csv");
     std::fs::write(&c, csv(&st)).map_err(|e| AppError::io(&c, e))?;

@@ -387,6 +387,14 @@ fn finite_or_null(v: &[f64]) -> Vec<serde_json::Value> {
         .collect()
 }
 
+/// `(least, greatest)` of a history (`(∞, −∞)` when it is empty).
+pub fn extremes(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(*x), hi.max(*x))
+        })
+}
+
 /// Extremes of a gauge's moment while the top rises and while it falls: `(rising min, rising max,
 /// falling min, falling max)`, N·m (NaN if the top never moves that way).
 pub fn gauge_by_direction(r: &DynamicRun, k: usize) -> (f64, f64, f64, f64) {
@@ -443,7 +451,7 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
         .iter()
         .enumerate()
         .map(|(k, g)| {
-            let m = &r.hist.gauge_moment[k];
+            let (mmin, mmax) = extremes(&r.hist.gauge_moment[k]);
             let (rmin, rmax, fmin, fmax) = gauge_by_direction(r, k);
             let num = |v: f64| {
                 if v.is_finite() {
@@ -454,8 +462,8 @@ pub fn summary_json(r: &DynamicRun) -> serde_json::Value {
             };
             json!({
                 "name": g.name, "arc": g.arc,
-                "moment_min": m.iter().copied().fold(f64::INFINITY, f64::min),
-                "moment_max": m.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                "moment_min": mmin,
+                "moment_max": mmax,
                 "moment_min_top_rising": num(rmin), "moment_max_top_rising": num(rmax),
                 "moment_min_top_falling": num(fmin), "moment_max_top_falling": num(fmax),
             })
@@ -526,14 +534,14 @@ pub fn summary_text(r: &DynamicRun) -> String {
         mr / 1e3
     );
     for (k, g) in r.spec.gauges.iter().enumerate() {
-        let m = &r.hist.gauge_moment[k];
+        let (mmin, mmax) = extremes(&r.hist.gauge_moment[k]);
         let _ = writeln!(
             t,
             "  gauge {} (arc {:.2} m): moment {:.2} to {:.2} kN·m",
             g.name,
             g.arc,
-            m.iter().copied().fold(f64::INFINITY, f64::min) / 1e3,
-            m.iter().copied().fold(f64::NEG_INFINITY, f64::max) / 1e3
+            mmin / 1e3,
+            mmax / 1e3
         );
         let (rmin, rmax, fmin, fmax) = gauge_by_direction(r, k);
         if rmin.is_finite() || fmin.is_finite() {

@@ -679,7 +679,7 @@ fn attempt(
         *iterations += 1;
         if !reuse {
             if ws.st.factor_tangent().is_err() {
-                ws.factored_dt = None;
+                // `advance` drops the factorisation of every failed attempt.
                 break;
             }
             ws.factored_dt = Some(dt);
