@@ -51,7 +51,7 @@ use crate::scene::riser::RiserScene;
 use crate::statics_cmd;
 
 /// Which setting a series refines.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Series {
     /// Element lengths.
     Mesh,
@@ -94,7 +94,7 @@ impl Default for ConvergenceOptions {
 }
 
 /// A key output's definition.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct OutputDef {
     /// Identifier (CSV column stem).
     pub id: String,
@@ -105,7 +105,7 @@ pub struct OutputDef {
 }
 
 /// One run of the study.
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone)]
 pub struct VariantRun {
     /// Element-length factor.
     pub mesh_factor: f64,
@@ -130,12 +130,11 @@ pub struct VariantRun {
     /// Why the run stopped early, if it did.
     pub error: Option<String>,
     /// The variant scene's TOML.
-    #[serde(skip)]
     pub scene_text: String,
 }
 
 /// The Richardson analysis of one output along one series.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SeriesAnalysis {
     /// Factors, coarse to fine.
     pub factors: Vec<f64>,
