@@ -2,6 +2,9 @@
 //! mesh series must predict a finer run it did not see; the errors must shrink with refinement; the
 //! values must not depend on how many runs go at once; and the files must be written.
 
+mod common;
+use common::Edit;
+
 use std::path::{Path, PathBuf};
 
 use catena::convergence::{self, ConvergenceOptions, Series};
@@ -17,9 +20,9 @@ fn short_heave(dir: &Path) -> PathBuf {
     let text =
         std::fs::read_to_string(root().join("cases/benchmarks/scr-heave.toml")).expect("case");
     let text = text
-        .replace("duration = 100.0 ", "duration = 30.0 ")
-        .replace("time_step = 0.05 ", "time_step = 0.1 ")
-        .replace("envelope_start = 50.0 ", "envelope_start = 15.0 ");
+        .edit("duration = 100.0 ", "duration = 30.0 ")
+        .edit("time_step = 0.05 ", "time_step = 0.1 ")
+        .edit("envelope_start = 50.0 ", "envelope_start = 15.0 ");
     assert!(text.contains("time_step = 0.1 ") && text.contains("duration = 30.0"));
     std::fs::create_dir_all(dir).expect("dir");
     let p = dir.join("short-heave.toml");

@@ -3,6 +3,9 @@
 //! tension independent of Δt), the seabed history committed only at converged steps, the start of a
 //! dynamic run, and streamed output.
 
+mod common;
+use common::Edit;
+
 use std::path::{Path, PathBuf};
 
 use catena::run_cmd;
@@ -34,7 +37,7 @@ fn hht_and_newmark_agree_on_the_heave_benchmark() {
     let hht = run_text("hht", &text);
     let nm = run_text(
         "newmark",
-        &text.replace(
+        &text.edit(
             "scheme = \"hht\"\nalpha = -0.1 ",
             "scheme = \"newmark\"\nbeta = 0.25\ngamma = 0.5 ",
         ),
@@ -62,13 +65,10 @@ fn hht_and_newmark_agree_on_the_heave_benchmark() {
 #[test]
 fn top_tension_does_not_depend_on_the_time_step() {
     let text = heave_text()
-        .replace("duration = 100.0", "duration = 30.0")
-        .replace("envelope_start = 50.0", "envelope_start = 15.0");
+        .edit("duration = 100.0", "duration = 30.0")
+        .edit("envelope_start = 50.0", "envelope_start = 15.0");
     let a = run_text("dt", &text);
-    let b = run_text(
-        "dt2",
-        &text.replace("time_step = 0.05 ", "time_step = 0.025 "),
-    );
+    let b = run_text("dt2", &text.edit("time_step = 0.05 ", "time_step = 0.025 "));
     assert_eq!(b.spec.dt, 0.025);
     let (_, _, min_a, max_a) = run_cmd::key_numbers(&a);
     let (_, _, min_b, max_b) = run_cmd::key_numbers(&b);
@@ -83,7 +83,7 @@ fn top_tension_does_not_depend_on_the_time_step() {
 }
 
 fn rq_heave_text() -> String {
-    heave_text().replace(
+    heave_text().edit(
         "model = \"linear\"\nstiffness = 100.0e3           # N/m/m², no friction, no damping",
         "model = \"randolph-quiggin\"\nsu0 = 1000.0\nsu_gradient = 1300.0\na = 6.0\nb = 0.25\nk_max = 200.0\nf_suc = 0.6\nlambda_suc = 1.0\nlambda_rep = 0.3",
     )
@@ -97,8 +97,8 @@ fn rq_heave_text() -> String {
 #[test]
 fn seabed_history_is_committed_only_at_converged_steps() {
     let text = rq_heave_text()
-        .replace("duration = 100.0", "duration = 15.0")
-        .replace("envelope_start = 50.0", "envelope_start = 0.0");
+        .edit("duration = 100.0", "duration = 15.0")
+        .edit("envelope_start = 50.0", "envelope_start = 0.0");
     let scene = RiserScene::parse("rq-heave", &text).expect("scene");
     assert!(matches!(
         scene.model.seabed.expect("seabed").seabed.law,
@@ -153,8 +153,8 @@ fn run_writes_dynamic_layout() {
     std::fs::write(
         &case,
         heave_text()
-            .replace("duration = 100.0", "duration = 5.0")
-            .replace(
+            .edit("duration = 100.0", "duration = 5.0")
+            .edit(
                 "envelope_start = 50.0",
                 "envelope_start = 0.0\noutput_interval = 0.1",
             ),
@@ -319,8 +319,8 @@ fn failed_run_reports_context_and_keeps_results() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail");
     let case = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail.toml");
     let text = heave_text()
-        .replace("duration = 100.0", "duration = 5.0")
-        .replace(
+        .edit("duration = 100.0", "duration = 5.0")
+        .edit(
             "envelope_start = 50.0",
             "envelope_start = 0.0\nmax_iterations = 1\nmax_step_cuts = 2",
         );
@@ -369,9 +369,9 @@ fn series_motion_and_seabed_damping_through_a_case() {
     }
     std::fs::write(dir.join("heave.csv"), csv).expect("csv");
     let base = heave_text()
-        .replace("duration = 100.0", "duration = 20.0")
-        .replace("envelope_start = 50.0", "envelope_start = 10.0");
-    let text = base.replace(
+        .edit("duration = 100.0", "duration = 20.0")
+        .edit("envelope_start = 50.0", "envelope_start = 10.0");
+    let text = base.edit(
         "[motion.harmonic]             # z = 2·r(t)·sin(2πt/10), quintic ramp over the first 10 s\nheave = 2.0                   # m\nperiod = 10.0                 # s\nramp = 10.0                   # s",
         "[motion.series]\nfile = \"heave.csv\"",
     );
@@ -393,7 +393,7 @@ fn series_motion_and_seabed_damping_through_a_case() {
         r.hist.top_z[i]
     );
     // Seabed damping (per unit contact area): the same run with a damped seabed.
-    let damped_text = text.replace(
+    let damped_text = text.edit(
         "stiffness = 100.0e3           # N/m/m², no friction, no damping",
         "stiffness = 100.0e3\ndamping = 50.0e3",
     );
@@ -425,8 +425,8 @@ fn series_motion_and_seabed_damping_through_a_case() {
 #[test]
 fn repeated_runs_are_bit_identical_whatever_the_threads() {
     let text = rq_heave_text()
-        .replace("duration = 100.0", "duration = 10.0")
-        .replace("envelope_start = 50.0", "envelope_start = 0.0");
+        .edit("duration = 100.0", "duration = 10.0")
+        .edit("envelope_start = 50.0", "envelope_start = 0.0");
     let pool = |n| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -452,8 +452,8 @@ fn repeated_runs_are_bit_identical_whatever_the_threads() {
 #[test]
 fn restart_from_checkpoint_is_bit_for_bit() {
     let text = rq_heave_text()
-        .replace("duration = 100.0", "duration = 10.0")
-        .replace("envelope_start = 50.0", "envelope_start = 0.0");
+        .edit("duration = 100.0", "duration = 10.0")
+        .edit("envelope_start = 50.0", "envelope_start = 0.0");
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("restart");
     std::fs::create_dir_all(&dir).expect("dir");
     let solve = || {
@@ -498,7 +498,7 @@ fn restart_from_checkpoint_is_bit_for_bit() {
     assert_eq!(end_full.state, end_restarted.state);
     // A checkpoint of another scene is refused.
     let other = statics_cmd::solve(
-        RiserScene::parse("other", &text.replace("f_suc = 0.6", "f_suc = 0.5")).expect("scene"),
+        RiserScene::parse("other", &text.edit("f_suc = 0.6", "f_suc = 0.5")).expect("scene"),
     )
     .expect("statics");
     let cp = run_cmd::Checkpoint::read(&dir.join("cut.json")).expect("checkpoint");

@@ -3,6 +3,9 @@
 //! error), never with NaN or a hang, and each has a check that a broken solver would fail.
 //! `validation/hard-cases.md` records what each tests, its step cuts and its cost.
 
+mod common;
+use common::Edit;
+
 use std::path::{Path, PathBuf};
 
 use catena::run_cmd::{self, DynamicRun};
@@ -59,8 +62,8 @@ fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
 #[test]
 fn sticky_soil_lift_off_and_recontact() {
     let r = run_case("hard/sticky-soil", |t| {
-        t.replace("duration = 60.0", "duration = 24.0")
-            .replace("envelope_start = 30.0", "envelope_start = 0.0")
+        t.edit("duration = 60.0", "duration = 24.0")
+            .edit("envelope_start = 30.0", "envelope_start = 0.0")
     });
     let stat = &r.statics.results.penetration;
     let e = &r.envelopes;
@@ -156,7 +159,7 @@ fn riser_lands_on_the_seabed() {
 fn short_elements_next_to_velocity_steps() {
     let fine = run_case("hard/short-elements", |t| t);
     let coarse = run_case("hard/short-elements", |t| {
-        t.replace("element_length = 0.0625", "element_length = 0.25")
+        t.edit("element_length = 0.0625", "element_length = 0.25")
     });
     let ext = |r: &DynamicRun| {
         let m = &r.hist.gauge_moment[0];
@@ -174,13 +177,37 @@ fn short_elements_next_to_velocity_steps() {
     assert_eq!(fine.statics.model.elements.len(), 1760);
 }
 
-/// Steps in the top velocity (0 → +1 → −1 → 0 m/s): the run completes and the top ends exactly
-/// where it started.
+/// Steps in the top velocity (0 → +1 → −1 → 0 m/s): the run completes, the top ends where it started,
+/// and the line responds as it must: while the top rises at 1 m/s the mean top tension is above its
+/// static value (drag and inertia resist the lift), while it falls it is below, and 15 s after the
+/// motion stopped the top tension has come back to the static value within 3 % (the mean over the
+/// last 5 s).
 #[test]
 fn velocity_steps() {
     let r = run_case("hard/velocity-step", |t| t);
     let z = *r.hist.top_z.last().expect("records");
     assert!((z - 1000.0).abs() < 1e-9, "{z}");
+    let h = &r.hist;
+    let mean = |a: f64, b: f64| {
+        let v: Vec<f64> =
+            h.t.iter()
+                .zip(&h.top_tension)
+                .filter(|(t, _)| **t >= a && **t <= b)
+                .map(|(_, v)| *v)
+                .collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let t0 = r.statics.summary.top_tension;
+    let (up, down, end) = (mean(6.0, 10.0), mean(11.0, 15.0), mean(25.0, 30.0));
+    println!(
+        "velocity steps: static {:.1} kN; rising {:.1} kN, falling {:.1} kN, last 5 s {:.1} kN",
+        t0 / 1e3,
+        up / 1e3,
+        down / 1e3,
+        end / 1e3
+    );
+    assert!(up > t0 && down < t0, "{up} / {down} vs {t0}");
+    assert!((end / t0 - 1.0).abs() < 0.03, "{end} vs {t0}");
 }
 
 /// Three hours of the heave benchmark (216 000 steps, about 2 minutes): the top tension's mean and
@@ -191,8 +218,8 @@ fn velocity_steps() {
 #[ignore]
 fn three_hour_heave_benchmark() {
     let r = run_case("benchmarks/scr-heave", |t| {
-        t.replace("duration = 100.0", "duration = 10800.0")
-            .replace("envelope_start = 50.0", "envelope_start = 0.0")
+        t.edit("duration = 100.0", "duration = 10800.0")
+            .edit("envelope_start = 50.0", "envelope_start = 0.0")
     });
     let h = &r.hist;
     let window = |a: f64, b: f64| {

@@ -1,5 +1,8 @@
 //! `catena soil-test`: the paper's Figures 3–6 as cases, the CSV interface, and bad input.
 
+mod common;
+use common::Edit;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -192,22 +195,22 @@ step = 0.001
 fn bad_input_names_file_and_key() {
     let cases: Vec<(&str, String, &[&str])> = vec![
         ("unknown_key.toml", format!("{GOOD_SEABED}kmax = 3.0\n{GOOD_TEST}"), &["kmax", "k_max"]),
-        ("missing_key.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("a = 6.0\n", "")), &["seabed.a"]),
-        ("bad_b.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("b = 0.25", "b = 1.5")), &["seabed.b", "0 < b < 1"]),
-        ("bad_fsuc.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("f_suc = 0.6", "f_suc = 1.2")), &["seabed.f_suc"]),
-        ("bad_kmax.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("k_max = 200.0", "k_max = 0.0")), &["seabed.k_max"]),
-        ("bad_d.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("diameter = 0.35", "diameter = -1.0")), &["seabed.diameter"]),
-        ("bad_lsuc.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("lambda_suc = 0.4", "lambda_suc = 0.0")), &["seabed.lambda_suc"]),
-        ("bad_lrep.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("lambda_rep = 0.2", "lambda_rep = -0.1")), &["seabed.lambda_rep"]),
-        ("no_strength.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("su0 = 5000.0", "su0 = 0.0").replace("su_gradient = 1500.0", "su_gradient = 0.0")), &["seabed.su0"]),
-        ("neg_strength.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("su0 = 5000.0", "su0 = -5.0")), &["seabed.su0"]),
+        ("missing_key.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("a = 6.0\n", "")), &["seabed.a"]),
+        ("bad_b.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("b = 0.25", "b = 1.5")), &["seabed.b", "0 < b < 1"]),
+        ("bad_fsuc.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("f_suc = 0.6", "f_suc = 1.2")), &["seabed.f_suc"]),
+        ("bad_kmax.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("k_max = 200.0", "k_max = 0.0")), &["seabed.k_max"]),
+        ("bad_d.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("diameter = 0.35", "diameter = -1.0")), &["seabed.diameter"]),
+        ("bad_lsuc.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("lambda_suc = 0.4", "lambda_suc = 0.0")), &["seabed.lambda_suc"]),
+        ("bad_lrep.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("lambda_rep = 0.2", "lambda_rep = -0.1")), &["seabed.lambda_rep"]),
+        ("no_strength.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("su0 = 5000.0", "su0 = 0.0").edit("su_gradient = 1500.0", "su_gradient = 0.0")), &["seabed.su0"]),
+        ("neg_strength.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("su0 = 5000.0", "su0 = -5.0")), &["seabed.su0"]),
         ("bad_fb.toml", format!("{GOOD_SEABED}f_b = 0.5\nsoil_density = 1500.0\nwater_density = 1025.0\n{GOOD_TEST}"), &["seabed.f_b"]),
         ("partial_buoyancy.toml", format!("{GOOD_SEABED}f_b = 1.5\n{GOOD_TEST}"), &["seabed.soil_density"]),
         ("wrong_model_key.toml", format!("{GOOD_SEABED}stiffness = 1.0\n{GOOD_TEST}"), &["seabed.stiffness"]),
-        ("unknown_model.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.replace("randolph-quiggin", "rq")), &["rq", "randolph-quiggin"]),
-        ("empty_waypoints.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.replace("[0.0, 0.1]", "[]")), &["test.waypoints"]),
-        ("zero_step.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.replace("step = 0.001", "step = 0.0")), &["test.step"]),
-        ("bad_control.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.replace("\"displacement\"", "\"force\"")), &["force", "displacement"]),
+        ("unknown_model.toml", format!("{}{GOOD_TEST}", GOOD_SEABED.edit("randolph-quiggin", "rq")), &["rq", "randolph-quiggin"]),
+        ("empty_waypoints.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.edit("[0.0, 0.1]", "[]")), &["test.waypoints"]),
+        ("zero_step.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.edit("step = 0.001", "step = 0.0")), &["test.step"]),
+        ("bad_control.toml", format!("{GOOD_SEABED}{}", GOOD_TEST.edit("\"displacement\"", "\"force\"")), &["force", "displacement"]),
         ("missing_test.toml", GOOD_SEABED.to_string(), &["test"]),
         ("not_carried.toml", format!("{GOOD_SEABED}[test]\ncontrol = \"load\"\nwaypoints = [5000.0, -1.0e7]\nstep = 1.0e6\n"), &["test.waypoints[1]", "cannot carry"]),
         ("syntax.toml", "[seabed\nmodel = 1".to_string(), &["line"]),

@@ -1,5 +1,8 @@
 //! `catena static`: output files, the HDF5 layout other programs read, and bad input.
 
+mod common;
+use common::Edit;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -109,43 +112,43 @@ fn bad_scenes_name_file_and_key() {
     let cases: Vec<(&str, String, &[&str])> = vec![
         (
             "short_line.toml",
-            good.replace("length = 1600.0", "length = 1000.0")
-                .replace("to = 1600.0", "to = 1000.0"),
+            good.edit("length = 1600.0", "length = 1000.0")
+                .edit("to = 1600.0", "to = 1000.0"),
             &["line.length", "distance between the ends"],
         ),
         (
             "mesh_short.toml",
-            good.replace("to = 1600.0", "to = 1500.0"),
+            good.edit("to = 1600.0", "to = 1500.0"),
             &["mesh[0].to", "1600"],
         ),
         (
             "unknown_key.toml",
-            good.replace("[line]", "[line]\ncolour = 1.0"),
+            good.edit("[line]", "[line]\ncolour = 1.0"),
             &["colour"],
         ),
         (
             "neg_ei.toml",
-            good.replace("ei = 17.59e6", "ei = -1.0"),
+            good.edit("ei = 17.59e6", "ei = -1.0"),
             &["line.ei"],
         ),
         (
             "missing_weight.toml",
-            good.replace("submerged_weight = 1010.0", ""),
+            good.edit("submerged_weight = 1010.0", ""),
             &["line.submerged_weight"],
         ),
         (
             "bad_seabed.toml",
-            good.replace("stiffness = 100.0e3", "stiffness = 100.0e3\nk_max = 3.0"),
+            good.edit("stiffness = 100.0e3", "stiffness = 100.0e3\nk_max = 3.0"),
             &["seabed.k_max"],
         ),
         (
             "bad_support.toml",
-            good.replace("anchor_x = 0.0", "anchor_x = 0.0\ntop = \"glued\""),
+            good.edit("anchor_x = 0.0", "anchor_x = 0.0\ntop = \"glued\""),
             &["glued", "pinned"],
         ),
         (
             "no_env.toml",
-            good.replace("[environment]", "[environmnt]"),
+            good.edit("[environment]", "[environmnt]"),
             &["environmnt"],
         ),
         (
