@@ -47,11 +47,11 @@ fn bench(c: &mut Criterion) {
         law: Law::Linear(LinearSeabed::new(d, 100e3, 0.0).expect("valid")),
         buoyancy: Some(SoilBuoyancy::new(d, 1.5, 1500.0, 1025.0).expect("valid")),
     };
-    let h0 = RqHistory::untouched(0.0);
+    let h0 = lin.untouched();
     c.bench_function("linear_100k", |b| {
         b.iter(|| {
             zs.iter()
-                .map(|&z| lin.evaluate(&h0, black_box(z)).total())
+                .map(|&z| lin.evaluate(&h0, black_box(z), 0.0, 0.0).total())
                 .sum::<f64>()
         })
     });

@@ -49,7 +49,7 @@
 //! largest displacement from the base (the second term is the rounding floor of the axial forces), or a relative residual below 1e-6 with a correction below
 //! 1e-10 m (machine-precision stagnation).
 
-use catena_seabed::law::{Law, SeabedHistory};
+use catena_seabed::law::SeabedHistory;
 use serde::{Deserialize, Serialize};
 
 use crate::model::LineModel;
@@ -341,7 +341,15 @@ impl DynWorkspace {
             st: StaticWorkspace::new(model)?,
             mass: vec![[0.0; 4]; n],
             f: vec![0.0; 3 * n],
-            next: vec![SeabedHistory::default(); n],
+            next: vec![
+                model
+                    .seabed
+                    .as_ref()
+                    .map_or(SeabedHistory::Linear(Default::default()), |s| s
+                        .seabed
+                        .untouched());
+                n
+            ],
             seabed_force: vec![0.0; n],
             g: vec![0.0; model.n_eq],
             dq: vec![0.0; model.n_eq],
@@ -395,7 +403,8 @@ pub fn initial_state(
         .map(
             |i| match (model.seabed.as_ref(), penetration(model, pl, u, &v, i)) {
                 (Some(sb), Some((z, _))) => sb.seabed.start_of_dynamics(z),
-                _ => SeabedHistory::untouched(0.0),
+                (Some(sb), None) => sb.seabed.untouched(),
+                _ => SeabedHistory::Linear(Default::default()),
             },
         )
         .collect();
@@ -418,6 +427,7 @@ pub fn initial_state(
         &state.history,
         ws,
         false,
+        0.0,
         0.0,
         0.0,
     );
@@ -460,6 +470,7 @@ fn forces(
     with_k: bool,
     k_scale: f64,
     c_v: f64,
+    dt: f64,
 ) {
     ws.st.assemble_structure(model, pl, u, with_k);
     if with_k {
@@ -469,17 +480,12 @@ fn forces(
     if let Some(sb) = &model.seabed {
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
-            let t = sb.seabed.evaluate(&committed[i], z);
+            let t = sb.seabed.evaluate(&committed[i], z, zdot, dt);
             ws.next[i] = t.next;
             let l = model.tributary[i];
-            let mut up = t.total();
+            let up = t.total();
             let mut k = t.tangent;
-            let mut c = 0.0;
-            if let Law::Linear(lin) = &sb.seabed.law {
-                let (fd, dfd) = lin.damping_force(z, zdot);
-                up += fd;
-                c = dfd;
-            }
+            let mut c = t.damping_coefficient;
             ws.seabed_force[i] = up;
             ws.st.residual[3 * i + 1] -= l * up;
             if with_k && (k != 0.0 || c != 0.0) {
@@ -629,6 +635,7 @@ fn attempt(
             !reuse,
             1.0 + alpha,
             c_v,
+            dt,
         );
         // Residual G = M a + (1+α) F − α F_n on the free equations.
         for i in 0..n {
@@ -706,6 +713,7 @@ fn attempt(
                 false,
                 1.0 + alpha,
                 c_v,
+                dt,
             );
             commit(state, ws, t1);
             return Ok(());
@@ -755,10 +763,11 @@ fn forces_at_iterate(
     with_k: bool,
     k_scale: f64,
     c_v: f64,
+    dt: f64,
 ) {
     let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
     forces(
-        model, pl, hydro, &u, &v, committed, ws, with_k, k_scale, c_v,
+        model, pl, hydro, &u, &v, committed, ws, with_k, k_scale, c_v, dt,
     );
     ws.u = u;
     ws.v = v;
@@ -948,7 +957,7 @@ pub fn snapshot(
         } else {
             0.0
         };
-        out.mode[i] = state.history[i].mode.code();
+        out.mode[i] = state.history[i].mode().code();
     }
     for i in [0, n - 1] {
         let m = ws.mass[i];

@@ -132,7 +132,7 @@ fn row(step: usize, leg: usize, z: f64, t: &SeabedTrial) -> Row {
         buoyancy: t.buoyancy,
         total: t.total(),
         tangent: t.tangent,
-        mode: t.next.mode,
+        mode: t.next.mode(),
         branch: t.branch,
     }
 }
@@ -152,20 +152,20 @@ pub fn solve_load(
     h: &SeabedHistory,
     target: f64,
 ) -> Result<(f64, SeabedTrial), (f64, f64)> {
-    let here = seabed.evaluate(h, h.z_prev);
+    let here = seabed.evaluate(h, h.z_prev(), 0.0, 0.0);
     let f0 = here.total();
     if target == f0 {
-        return Ok((h.z_prev, here));
+        return Ok((h.z_prev(), here));
     }
     let dir = if target > f0 { 1.0 } else { -1.0 };
     let unit = search_unit(seabed);
     let d = seabed.diameter();
-    let (z_deep, z_clear) = (h.z_prev.max(0.0) + 100.0 * d, -d);
+    let (z_deep, z_clear) = (h.z_prev().max(0.0) + 100.0 * d, -d);
     let mut step = 1e-3 * unit;
-    let mut za = h.z_prev;
+    let mut za = h.z_prev();
     loop {
         let zb = za + dir * step;
-        let tb = seabed.evaluate(h, zb);
+        let tb = seabed.evaluate(h, zb, 0.0, 0.0);
         if dir * (tb.total() - target) >= 0.0 {
             // Bisect [za, zb]: the target lies between F(za) and F(zb).
             let (mut lo, mut hi) = (za, zb);
@@ -175,7 +175,7 @@ pub fn solve_load(
                 if m == lo || m == hi {
                     break;
                 }
-                let tm = seabed.evaluate(h, m);
+                let tm = seabed.evaluate(h, m, 0.0, 0.0);
                 if dir * (tm.total() - target) >= 0.0 {
                     hi = m;
                     best = (m, tm);
@@ -215,14 +215,14 @@ pub fn run(seabed: &Seabed, legs: &[Leg]) -> Result<TestResult, TestError> {
             });
         }
     }
-    let mut h = SeabedHistory::untouched(0.0);
-    let first = seabed.evaluate(&h, 0.0);
+    let mut h = seabed.untouched();
+    let first = seabed.evaluate(&h, 0.0, 0.0, 0.0);
     let mut rows = vec![row(0, 0, 0.0, &first)];
     let mut leg_ends = Vec::with_capacity(legs.len());
     let mut force = first.total();
     for (li, leg) in legs.iter().enumerate() {
         let start = match leg.control {
-            Control::Displacement => h.z_prev,
+            Control::Displacement => h.z_prev(),
             Control::Load => force,
         };
         let end = match leg.target {
@@ -238,13 +238,13 @@ pub fn run(seabed: &Seabed, legs: &[Leg]) -> Result<TestResult, TestError> {
                 start + delta * (k as f64) / (n as f64)
             };
             let (z, trial) = match leg.control {
-                Control::Displacement => (value, seabed.evaluate(&h, value)),
+                Control::Displacement => (value, seabed.evaluate(&h, value, 0.0, 0.0)),
                 Control::Load => solve_load(seabed, &h, value).map_err(|(z_to, reached)| {
                     TestError::LoadNotCarried {
                         leg: li + 1,
                         increment: k,
                         target: value,
-                        z_from: h.z_prev,
+                        z_from: h.z_prev(),
                         z_to,
                         reached,
                     }

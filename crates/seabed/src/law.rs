@@ -1,17 +1,63 @@
 //! One interface to the seabed a scene chose: a contact law plus optional soil buoyancy.
 //!
-//! The total upward force per unit length on a node is `F = P(z) + F_b(z)`, with tangent
-//! `dF/dz = dP/dz + dF_b/dz`. Static analysis uses [`Seabed::backbone`] (initial penetration only, as
-//! the paper prescribes); dynamics use [`Seabed::evaluate`] from each node's committed history.
+//! The total upward force per unit length on a node is
+//!
+//! ```text
+//! F = P(z; history) + F_b(z) + F_d(z, ż)
+//! ```
+//!
+//! (resistance, soil buoyancy, damping) with the tangents `∂F/∂z = dP/dz + dF_b/dz` and
+//! `∂F/∂ż` (the damping coefficient). Static analysis uses [`Seabed::backbone`] (initial penetration
+//! only, as the paper prescribes); dynamics use [`Seabed::evaluate`] from each node's committed
+//! history, with the penetration rate ż and the step Δt.
+//!
+//! **Each law owns its history type** ([`LinearHistory`], [`RqHistory`]); [`SeabedHistory`] is the
+//! tagged union the FE code stores, one per node, without knowing what is inside. Adding a law
+//! means: its own module (parameters, history, `evaluate`), a variant in [`Law`] and in
+//! [`SeabedHistory`] here, and its scene table; nothing in the FE code or the output code.
 
 use serde::{Deserialize, Serialize};
 
+use crate::linear::LinearHistory;
 use crate::rq::{Branch, Mode, RandolphQuiggin, RqHistory};
 use crate::{LinearSeabed, SoilBuoyancy};
 
-/// The per-node committed history (the Randolph–Quiggin history; the linear law only tracks its
-/// mode and last penetration in it).
-pub type SeabedHistory = RqHistory;
+/// The committed history of one node, of whichever law the seabed has.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "kebab-case")]
+pub enum SeabedHistory {
+    /// The linear law's history.
+    Linear(LinearHistory),
+    /// The Randolph–Quiggin history.
+    RandolphQuiggin(RqHistory),
+}
+
+impl SeabedHistory {
+    /// The contact mode after the last converged step (for output: the linear law is in
+    /// `InitialPenetration` while in contact and `NotInContact` otherwise).
+    pub fn mode(&self) -> Mode {
+        match self {
+            SeabedHistory::Linear(h) => h.mode(),
+            SeabedHistory::RandolphQuiggin(h) => h.mode,
+        }
+    }
+
+    /// The penetration at the last converged step, m.
+    pub fn z_prev(&self) -> f64 {
+        match self {
+            SeabedHistory::Linear(h) => h.z_prev,
+            SeabedHistory::RandolphQuiggin(h) => h.z_prev,
+        }
+    }
+
+    /// The Randolph–Quiggin history, if it is one.
+    pub fn as_rq(&self) -> Option<&RqHistory> {
+        match self {
+            SeabedHistory::RandolphQuiggin(h) => Some(h),
+            SeabedHistory::Linear(_) => None,
+        }
+    }
+}
 
 /// The contact law.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -39,8 +85,12 @@ pub struct SeabedTrial {
     pub resistance: f64,
     /// Soil buoyancy `F_b`, N/m.
     pub buoyancy: f64,
-    /// `d(P + F_b)/dz`, N/m².
+    /// Seabed damping `F_d`, N/m (0 for laws without damping).
+    pub damping: f64,
+    /// `∂(P + F_b + F_d)/∂z`, N/m².
     pub tangent: f64,
+    /// `∂F_d/∂ż`, N·s/m² (the damping coefficient per unit length).
+    pub damping_coefficient: f64,
     /// The formula `P` came from.
     pub branch: Branch,
     /// The history to commit if the step converges.
@@ -48,9 +98,9 @@ pub struct SeabedTrial {
 }
 
 impl SeabedTrial {
-    /// `P + F_b`, N/m (upward).
+    /// `P + F_b + F_d`, N/m (upward).
     pub fn total(&self) -> f64 {
-        self.resistance + self.buoyancy
+        self.resistance + self.buoyancy + self.damping
     }
 }
 
@@ -63,49 +113,69 @@ impl Seabed {
         }
     }
 
-    /// A trial at penetration `z` from the committed history `h` (pure).
-    pub fn evaluate(&self, h: &SeabedHistory, z: f64) -> SeabedTrial {
-        let (resistance, tangent, branch, next) = match &self.law {
-            Law::RandolphQuiggin(rq) => {
-                let t = rq.evaluate(h, z);
-                (t.p, t.tangent, t.branch, t.next)
-            }
-            Law::Linear(l) => {
-                let (p, dp) = l.force(z);
-                (p, dp, linear_branch(z), linear_next(h, z, p))
-            }
-        };
-        self.with_buoyancy(resistance, tangent, branch, next, z)
+    /// The history of a node that has never touched the seabed, for this law.
+    pub fn untouched(&self) -> SeabedHistory {
+        match &self.law {
+            Law::Linear(_) => SeabedHistory::Linear(LinearHistory::default()),
+            Law::RandolphQuiggin(_) => SeabedHistory::RandolphQuiggin(RqHistory::untouched(0.0)),
+        }
     }
 
-    /// The static (initial-penetration-only) response at `z`: the backbone for Randolph–Quiggin.
+    /// A trial at penetration `z` moving at the rate `z_rate = ż` (m/s, positive down) over a step of
+    /// `dt` (s), from the committed history `h` (pure). A history of another law than this one (which
+    /// a checked scene and checkpoint never give) is read as an untouched node.
+    pub fn evaluate(&self, h: &SeabedHistory, z: f64, z_rate: f64, dt: f64) -> SeabedTrial {
+        let _ = dt; // No law of catena's is rate-dependent beyond linear damping yet.
+        let (resistance, tangent, branch, next, damping, c) = match (&self.law, h) {
+            (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
+                let t = rq.evaluate(h, z);
+                (
+                    t.p,
+                    t.tangent,
+                    t.branch,
+                    SeabedHistory::RandolphQuiggin(t.next),
+                    0.0,
+                    0.0,
+                )
+            }
+            (Law::RandolphQuiggin(_), _) => return self.evaluate(&self.untouched(), z, z_rate, dt),
+            (Law::Linear(l), SeabedHistory::Linear(h)) => {
+                let (p, dp) = l.force(z);
+                let (fd, dfd) = l.damping_force(z, z_rate);
+                (
+                    p,
+                    dp,
+                    linear_branch(z),
+                    SeabedHistory::Linear(h.next(z)),
+                    fd,
+                    dfd,
+                )
+            }
+            (Law::Linear(_), _) => return self.evaluate(&self.untouched(), z, z_rate, dt),
+        };
+        let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
+        SeabedTrial {
+            resistance,
+            buoyancy,
+            damping,
+            tangent: tangent + db,
+            damping_coefficient: c,
+            branch,
+            next,
+        }
+    }
+
+    /// The static (initial-penetration-only) response at `z`: the backbone for Randolph–Quiggin, at
+    /// rest.
     pub fn backbone(&self, z: f64) -> SeabedTrial {
-        self.evaluate(&SeabedHistory::untouched(0.0), z)
+        self.evaluate(&self.untouched(), z, 0.0, 0.0)
     }
 
     /// The history of a node at the start of a dynamic run, from its static penetration `z_s`.
     pub fn start_of_dynamics(&self, z_s: f64) -> SeabedHistory {
         match &self.law {
-            Law::RandolphQuiggin(rq) => rq.start_of_dynamics(z_s),
-            Law::Linear(l) => linear_next(&SeabedHistory::untouched(0.0), z_s, l.force(z_s).0),
-        }
-    }
-
-    fn with_buoyancy(
-        &self,
-        resistance: f64,
-        tangent: f64,
-        branch: Branch,
-        next: SeabedHistory,
-        z: f64,
-    ) -> SeabedTrial {
-        let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
-        SeabedTrial {
-            resistance,
-            buoyancy,
-            tangent: tangent + db,
-            branch,
-            next,
+            Law::RandolphQuiggin(rq) => SeabedHistory::RandolphQuiggin(rq.start_of_dynamics(z_s)),
+            Law::Linear(_) => SeabedHistory::Linear(LinearHistory::default().next(z_s)),
         }
     }
 }
@@ -115,21 +185,5 @@ fn linear_branch(z: f64) -> Branch {
         Branch::Backbone
     } else {
         Branch::NoContact
-    }
-}
-
-fn linear_next(h: &SeabedHistory, z: f64, p: f64) -> SeabedHistory {
-    let contact = z > 0.0;
-    SeabedHistory {
-        mode: if contact {
-            Mode::InitialPenetration
-        } else {
-            Mode::NotInContact
-        },
-        z_prev: z,
-        p_prev: p,
-        z_max: h.z_max.max(z),
-        contacted: h.contacted || contact,
-        ..SeabedHistory::untouched(z)
     }
 }

@@ -10,7 +10,7 @@
 //! structural): a trial is a **pure function** of the committed history and the trial penetration,
 //!
 //! ```text
-//! evaluate(&law, &committed, z_trial) -> Trial { force, tangent, next }
+//! evaluate(&law, &committed, z_trial, ż, Δt) -> Trial { force, tangent, next }
 //! ```
 //!
 //! and the caller replaces `committed` by `next` only when its step has converged. A trial can never
@@ -21,7 +21,8 @@
 //!   `shared/spec/seabed-model.md` fixes it;
 //! - [`linear`]: the linear elastic tensionless seabed, `P = k·D·z`, with optional damping;
 //! - [`buoyancy`]: the soil buoyancy force of the paper's eq. 15;
-//! - [`law`]: [`law::Seabed`], the law a scene chose plus optional buoyancy, behind one interface;
+//! - [`law`]: [`law::Seabed`], the law a scene chose plus optional buoyancy, behind one interface,
+//!   and [`law::SeabedHistory`], the per-node history of whichever law it is;
 //! - [`element_test`]: the soil element test driver (displacement and load control).
 
 pub mod buoyancy;
@@ -32,7 +33,7 @@ pub mod rq;
 
 pub use buoyancy::SoilBuoyancy;
 pub use law::{Seabed, SeabedHistory, SeabedTrial};
-pub use linear::LinearSeabed;
+pub use linear::{LinearHistory, LinearSeabed};
 pub use rq::{Mode, RandolphQuiggin, RqHistory, RqParams, RqTrial};
 
 /// Standard gravity, m/s² (the value `cases.md` prescribes).

@@ -8,12 +8,42 @@
 //! F_damp = c·D·ż   for z > 0, else 0           (N/m, opposing the penetration rate ż)
 //! ```
 //!
-//! with `k` in N/m/m² (Pa/m) and `c` in N·s/m/m². The law has no history; a node is reported as
+//! with `k` in N/m/m² (Pa/m) and `c` in N·s/m/m². The force has no memory; [`LinearHistory`] keeps
+//! only what output reports (the last penetration and the deepest one). A node is reported as
 //! `initial_penetration` while in contact and `not_in_contact` otherwise.
 
 use serde::{Deserialize, Serialize};
 
+use crate::rq::Mode;
 use crate::{check, ParamError};
+
+/// The committed history of one node on the linear seabed.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct LinearHistory {
+    /// Penetration at the last converged step, m.
+    pub z_prev: f64,
+    /// The deepest penetration so far, m (0 until the node touches).
+    pub z_max: f64,
+}
+
+impl LinearHistory {
+    /// The history after a converged step at penetration `z`.
+    pub fn next(&self, z: f64) -> Self {
+        Self {
+            z_prev: z,
+            z_max: self.z_max.max(z),
+        }
+    }
+
+    /// The contact mode: in contact (initial penetration) while `z > 0`.
+    pub fn mode(&self) -> Mode {
+        if self.z_prev > 0.0 {
+            Mode::InitialPenetration
+        } else {
+            Mode::NotInContact
+        }
+    }
+}
 
 /// A linear elastic tensionless seabed with optional linear damping.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
