@@ -11,37 +11,23 @@ use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {
     let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benchmarks/scr-heave.toml");
-    let scene = catena::statics_cmd::read_scene(&case).expect("case");
+    let scene = catena::statics::read_scene(&case).expect("case");
     let mut g = c.benchmark_group("heave");
     g.sample_size(10);
     g.bench_function("heave_benchmark_full", |b| {
         b.iter(|| {
-            let st = catena::statics_cmd::solve(scene.clone()).expect("statics");
-            catena::run_cmd::run(st, None, false).expect("run")
+            let st = catena::statics::solve(scene.clone()).expect("statics");
+            catena::run::run(st, &mut [], catena::run::RunOptions::default()).expect("run")
         })
     });
-    let st = catena::statics_cmd::solve(scene.clone()).expect("statics");
-    let spec = st.scene.dynamic.clone().expect("dynamic");
-    let mut ws = DynWorkspace::new(&st.model).expect("ws");
-    let state0 = dynamics::initial_state(
-        &st.model,
-        &st.placement,
-        spec.settings.hydro.as_ref(),
-        &st.u,
-        &mut ws,
-    );
+    let st = catena::statics::solve(scene.clone()).expect("statics");
+    let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+    let mut ws = DynWorkspace::new(&dm.line).expect("ws");
+    let state0 = dynamics::initial_state(&dm, &st.u, &mut ws);
     g.bench_function("heave_one_step", |b| {
         b.iter(|| {
             let mut s = state0.clone();
-            dynamics::advance(
-                &st.model,
-                &st.placement,
-                &spec.settings,
-                &mut s,
-                &mut ws,
-                spec.dt,
-            )
-            .expect("step")
+            dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step")
         })
     });
     g.finish();

@@ -17,7 +17,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 fn bench(c: &mut Criterion) {
     let case =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/static-linear-k100.toml");
-    let scene = catena::statics_cmd::read_scene(&case).expect("case");
+    let scene = catena::statics::read_scene(&case).expect("case");
     let model = scene.model.clone();
     c.bench_function("scr1000_static_solve", |b| {
         b.iter(|| {
@@ -39,8 +39,8 @@ fn bench(c: &mut Criterion) {
     let mut rhs = vec![1.0; model.n_eq];
     c.bench_function("scr1000_factor_solve", |b| {
         b.iter(|| {
-            ws.factor_tangent().expect("factor");
-            ws.solve_tangent(&mut rhs);
+            ws.asm.factor_tangent().expect("factor");
+            ws.asm.solve_tangent(&mut rhs);
         })
     });
     c.bench_function("scr1000_symbolic", |b| {

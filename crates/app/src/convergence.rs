@@ -1,11 +1,12 @@
-//! `catena convergence CASE.toml --out DIR`: what accuracy costs in time.
+//! The convergence study (`catena convergence`): what accuracy costs in time.
 //!
 //! The scene is run as written (the *base* run) and again with every element length scaled by each
 //! of the mesh factors (Δt as written) and with the time step scaled by each of the Δt factors (mesh
-//! as written): by default ×2, ×1, ×½, ×¼ for both, seven runs in all. Each variant is the scene's
-//! own TOML with `mesh[*].element_length` and `dynamic.time_step` scaled and `output_interval`
-//! removed, so every time step is sampled; the variant files are written to `DIR/scenes/` and any of
-//! them can be run alone with `catena run`.
+//! as written): by default ×2, ×1, ×½, ×¼ for both, seven runs in all. Each variant is the parsed
+//! scene edited by key path ([`crate::scene::edit`]): `mesh[*].element_length` and
+//! `dynamic.time_step` scaled and `dynamic.output_interval` removed, so every time step is sampled;
+//! the variant scenes' text is kept (the command writes it to `DIR/scenes/`, and any of them can be
+//! run alone with `catena run`).
 //!
 //! **Key outputs** of each run (from `dynamic.envelope_start`):
 //! - the touchdown-zone moment range: the largest per-node range of the bending moment over the arc
@@ -36,19 +37,17 @@
 //! Runs go one at a time by default so that their wall times are honest; `--jobs N` runs N at once
 //! (each run is single-threaded and deterministic, so the values do not change, only the times).
 
-use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use plotters::prelude::*;
 use rayon::prelude::*;
-use serde_json::json;
 
 use crate::error::AppError;
-use crate::plot::{init_fonts, plot_err};
-use crate::run_cmd::{self, DynamicRun, RunOptions};
+use crate::run::{self, DynamicRun, RunOptions};
+use crate::scene::edit::Edit;
 use crate::scene::riser::RiserScene;
-use crate::statics_cmd;
+use crate::scene::{DirResolver, Resolver};
+use crate::statics;
 
 /// Which setting a series refines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -249,7 +248,7 @@ pub fn output_defs(scene: &RiserScene) -> Vec<OutputDef> {
 /// node touched the seabed in the envelope window.
 pub fn touchdown_zone(r: &DynamicRun) -> Option<(f64, f64)> {
     let e = &r.envelopes;
-    let arc = &r.statics.model.arc;
+    let arc = &r.model.line.arc;
     let touched = |i: usize| e.penetration_max[i].is_finite() && e.penetration_max[i] > 0.0;
     let mut idx: Vec<usize> = (0..arc.len())
         .filter(|&i| touched(i) && e.penetration_min[i] < 0.0)
@@ -265,7 +264,7 @@ pub fn touchdown_zone(r: &DynamicRun) -> Option<(f64, f64)> {
 pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
     let mut v = Vec::new();
     let e = &r.envelopes;
-    let arc = &r.statics.model.arc;
+    let arc = &r.model.line.arc;
     let range = e.moment_range();
     let has_seabed = r.statics.model.seabed.is_some();
     let zone = if has_seabed {
@@ -283,7 +282,7 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
         None => f64::NAN,
     };
     v.push(mr * 1e-3);
-    let (_, _, tmin, tmax) = run_cmd::key_numbers(r);
+    let (_, _, tmin, tmax) = run::key_numbers(r);
     v.push((tmax - tmin) * 1e-3);
     v.push(tmax * 1e-3);
     if has_seabed {
@@ -295,87 +294,66 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
             .fold(f64::NAN, f64::max);
         v.push(p * 1e3);
     }
-    for m in &r.hist.gauge_moment {
-        let (lo, hi) = run_cmd::extremes(m);
-        v.push(lo * 1e-3);
-        v.push(hi * 1e-3);
+    for tr in &r.gauges.traces {
+        let (lo, hi) = tr.moment_extremes;
+        v.push(lo.unwrap_or(f64::NAN) * 1e-3);
+        v.push(hi.unwrap_or(f64::NAN) * 1e-3);
     }
     v
 }
 
-/// The scene text with element lengths and the time step scaled, and the output interval removed.
-pub fn variant_text(
-    file: &str,
-    text: &str,
+/// The variant scene: element lengths scaled by `mesh_factor`, the time step by `dt_factor`, the
+/// output interval removed (edits to the parsed scene), with its text headed by a comment saying so.
+pub fn variant(
+    scene: &RiserScene,
     mesh_factor: f64,
     dt_factor: f64,
-) -> Result<String, AppError> {
-    let bad = |message: String| AppError::Run {
-        file: file.to_string(),
-        message,
-    };
-    let mut table: toml::Table = text
-        .parse()
-        .map_err(|e| bad(format!("not valid TOML: {e}")))?;
-    let mesh = table
-        .get_mut("mesh")
-        .and_then(|m| m.as_array_mut())
-        .ok_or_else(|| bad("key `mesh`: expected [[mesh]] sections".into()))?;
-    for (i, sec) in mesh.iter_mut().enumerate() {
-        let el = sec.get_mut("element_length").ok_or_else(|| {
-            bad(format!(
-                "key `mesh[{i}].element_length`: expected a length in m"
-            ))
-        })?;
-        let l = el
-            .as_float()
-            .or_else(|| el.as_integer().map(|x| x as f64))
-            .ok_or_else(|| bad(format!("key `mesh[{i}].element_length`: expected a number")))?;
-        *el = toml::Value::Float(l * mesh_factor);
-    }
-    let dynamic = table
-        .get_mut("dynamic")
-        .and_then(|d| d.as_table_mut())
-        .ok_or_else(|| {
-            bad(
+    files: &dyn Resolver,
+) -> Result<RiserScene, AppError> {
+    if scene.dynamic.is_none() {
+        return Err(AppError::Run {
+            file: scene.file.clone(),
+            message:
                 "key `dynamic`: expected a [dynamic] table (a convergence study runs the dynamics)"
                     .into(),
-            )
-        })?;
-    let dt = dynamic
-        .get("time_step")
-        .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|x| x as f64)))
-        .ok_or_else(|| bad("key `dynamic.time_step`: expected a time in s".into()))?;
-    dynamic.insert("time_step".into(), toml::Value::Float(dt * dt_factor));
-    dynamic.remove("output_interval");
-    let mut out = format!(
-        "# catena convergence variant of {file}: element lengths x{mesh_factor}, time step x{dt_factor},\n\
-         # every step sampled (output_interval removed). Generated; edit the original instead.\n"
+        });
+    }
+    let mut v = scene.edited(
+        &[
+            Edit::scale("mesh[*].element_length", mesh_factor),
+            Edit::scale("dynamic.time_step", dt_factor),
+            Edit::remove("dynamic.output_interval"),
+        ],
+        files,
+    )?;
+    v.text = format!(
+        "# catena convergence variant of {}: element lengths x{mesh_factor}, time step x{dt_factor},\n\
+         # every step sampled (output_interval removed). Generated; edit the original instead.\n{}",
+        scene.file, v.text
     );
-    out.push_str(&toml::to_string(&table).map_err(|e| bad(format!("cannot write TOML: {e}")))?);
-    Ok(out)
+    Ok(v)
 }
 
 fn run_variant(
-    file: &str,
-    text: &str,
+    scene: &RiserScene,
     mesh_factor: f64,
     dt_factor: f64,
+    files: &dyn Resolver,
 ) -> Result<VariantRun, AppError> {
-    let vtext = variant_text(file, text, mesh_factor, dt_factor)?;
-    let scene = RiserScene::parse(file, &vtext)?;
-    let elements = scene.model.elements.len();
-    let min_el = scene
+    let vscene = variant(scene, mesh_factor, dt_factor, files)?;
+    let scene_text = vscene.text.clone();
+    let elements = vscene.model.elements.len();
+    let min_el = vscene
         .model
         .elements
         .iter()
         .map(|e| e.l0)
         .fold(f64::INFINITY, f64::min);
     let t0 = Instant::now();
-    let statics = statics_cmd::solve(scene)?;
-    let r = run_cmd::run_with(statics, None, RunOptions::default())?;
+    let st = statics::solve(vscene)?;
+    let r = run::run(st, &mut [], RunOptions::default())?;
     let wall = t0.elapsed().as_secs_f64();
-    let values = if r.error.is_none() {
+    let values = if r.completed() {
         key_outputs(&r)
     } else {
         vec![f64::NAN; output_defs(&r.statics.scene).len()]
@@ -391,8 +369,8 @@ fn run_variant(
         step_cuts: r.cuts,
         wall_seconds: wall,
         values,
-        error: r.error.clone(),
-        scene_text: vtext,
+        error: r.stop.as_ref().map(ToString::to_string),
+        scene_text,
     })
 }
 
@@ -458,7 +436,8 @@ fn factors(list: &[f64], what: &str, file: &str) -> Result<Vec<f64>, AppError> {
 pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> {
     let file = case.display().to_string();
     let text = crate::scene::read_text(case)?;
-    let scene = RiserScene::parse(&file, &text)?;
+    let files = DirResolver::beside(case);
+    let scene = RiserScene::parse(&file, &text, &files)?;
     if scene.dynamic.is_none() {
         return Err(AppError::Run {
             file,
@@ -473,7 +452,7 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
     pairs.extend(mesh.iter().filter(|f| **f != 1.0).map(|f| (*f, 1.0)));
     pairs.extend(dts.iter().filter(|f| **f != 1.0).map(|f| (1.0, *f)));
     let one = |&(mf, df): &(f64, f64)| {
-        let r = run_variant(&file, &text, mf, df);
+        let r = run_variant(&scene, mf, df, &files);
         if opts.progress {
             match &r {
                 Ok(v) => eprintln!(
@@ -530,7 +509,7 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
 }
 
 /// The error of a run in one output, %, in its series (the base run: mesh, then Δt).
-fn error_of(st: &Study, k: usize, run: &VariantRun) -> (f64, f64) {
+pub fn error_of(st: &Study, k: usize, run: &VariantRun) -> (f64, f64) {
     let (m, d) = &st.analyses[k];
     let find = |a: &SeriesAnalysis, f: f64| {
         a.factors
@@ -550,371 +529,6 @@ fn error_of(st: &Study, k: usize, run: &VariantRun) -> (f64, f64) {
             f64::NAN
         },
     )
-}
-
-/// The table as CSV: a row per run; per output its value and its error (mesh series or Δt series).
-pub fn csv(st: &Study) -> String {
-    let mut s = String::from(
-        "series,mesh_factor,dt_factor,elements,min_element_length_m,time_step_s,steps,newton_iterations,step_cuts,wall_s",
-    );
-    for o in &st.outputs {
-        let unit = o.unit.replace('·', "");
-        let _ = write!(s, ",{}_{unit},{}_error_percent", o.id, o.id);
-    }
-    s.push('\n');
-    let mut rows: Vec<(Series, &VariantRun)> = Vec::new();
-    for ser in [Series::Mesh, Series::TimeStep] {
-        rows.extend(st.series(ser).into_iter().map(|r| (ser, r)));
-    }
-    for (ser, r) in rows {
-        let _ = write!(
-            s,
-            "{},{},{},{},{},{},{},{},{},{:.4}",
-            ser.name(),
-            r.mesh_factor,
-            r.dt_factor,
-            r.elements,
-            r.min_element_length,
-            r.dt,
-            r.steps,
-            r.newton_iterations,
-            r.step_cuts,
-            r.wall_seconds
-        );
-        for (k, v) in r.values.iter().enumerate() {
-            let (em, ed) = error_of(st, k, r);
-            let e = if ser == Series::Mesh { em } else { ed };
-            let _ = write!(s, ",{v},{e}");
-        }
-        s.push('\n');
-    }
-    s
-}
-
-/// The study as JSON.
-pub fn to_json(st: &Study) -> serde_json::Value {
-    let num = |v: f64| {
-        if v.is_finite() {
-            json!(v)
-        } else {
-            serde_json::Value::Null
-        }
-    };
-    let an = |a: &SeriesAnalysis| {
-        json!({
-            "factors": a.factors,
-            "values": a.values.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-            "observed_order": a.order,
-            "richardson": a.extrapolated,
-            "gci_percent": a.gci_percent,
-            "reference": num(a.reference),
-            "reference_kind": a.reference_kind,
-            "errors_percent": a.errors_percent.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-        })
-    };
-    json!({
-        "case": st.file,
-        "title": st.title,
-        "catena_version": env!("CARGO_PKG_VERSION"),
-        "runs": st.runs.iter().map(|r| json!({
-            "mesh_factor": r.mesh_factor, "dt_factor": r.dt_factor, "elements": r.elements,
-            "min_element_length": r.min_element_length, "time_step": r.dt, "steps": r.steps,
-            "newton_iterations": r.newton_iterations, "step_cuts": r.step_cuts,
-            "wall_seconds": r.wall_seconds,
-            "values": r.values.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-            "error": r.error,
-        })).collect::<Vec<_>>(),
-        "outputs": st.outputs.iter().zip(&st.analyses).map(|(o, (m, d))| json!({
-            "id": o.id, "label": o.label, "unit": o.unit,
-            "mesh": an(m), "time_step": an(d),
-        })).collect::<Vec<_>>(),
-    })
-}
-
-/// The study as text.
-pub fn summary_text(st: &Study) -> String {
-    let mut t = String::new();
-    let _ = writeln!(t, "{} — convergence study ({})", st.title, st.file);
-    for ser in [Series::Mesh, Series::TimeStep] {
-        let runs = st.series(ser);
-        let _ = writeln!(
-            t,
-            "\n{}:",
-            match ser {
-                Series::Mesh => "element length refined (time step as written)",
-                Series::TimeStep => "time step refined (mesh as written)",
-            }
-        );
-        let _ = write!(
-            t,
-            "  {:>7} {:>8} {:>9} {:>8} {:>5} {:>8}",
-            "factor", "elements", "min el m", "dt s", "cuts", "wall s"
-        );
-        for o in &st.outputs {
-            let _ = write!(t, " | {:>24}", format!("{} ({})", o.id, o.unit));
-        }
-        t.push('\n');
-        for r in &runs {
-            let f = if ser == Series::Mesh {
-                r.mesh_factor
-            } else {
-                r.dt_factor
-            };
-            let _ = write!(
-                t,
-                "  {:>7} {:>8} {:>9.4} {:>8.4} {:>5} {:>8.2}",
-                format!("x{f}"),
-                r.elements,
-                r.min_element_length,
-                r.dt,
-                r.step_cuts,
-                r.wall_seconds
-            );
-            for k in 0..st.outputs.len() {
-                let (em, ed) = error_of(st, k, r);
-                let e = if ser == Series::Mesh { em } else { ed };
-                let _ = write!(t, " | {:>12.4} {:>+10.4}%", r.values[k], e);
-            }
-            if r.error.is_some() {
-                t.push_str("  STOPPED EARLY");
-            }
-            t.push('\n');
-        }
-        let _ = write!(t, "  {:>58}", "reference (order p, GCI)");
-        for (m, d) in &st.analyses {
-            let a = if ser == Series::Mesh { m } else { d };
-            let tag = match (a.order, a.gci_percent) {
-                (Some(p), Some(g)) => format!("R p={p:.2} GCI {g:.3}%"),
-                (Some(p), None) => format!("R p={p:.2}"),
-                _ => a.reference_kind.into(),
-            };
-            let _ = write!(t, " | {:>12.4} {:>11}", a.reference, tag);
-        }
-        t.push('\n');
-    }
-    if let Some(b) = st.base() {
-        let _ = writeln!(
-            t,
-            "\nthe scene as written ({} elements, dt {} s, {:.2} s): estimated error = |mesh| + |time step|:",
-            b.elements, b.dt, b.wall_seconds
-        );
-        for (k, o) in st.outputs.iter().enumerate() {
-            let (em, ed) = error_of(st, k, b);
-            let pct = |e: f64| {
-                if e.is_finite() {
-                    format!("{e:+.4} %")
-                } else {
-                    "n/a".into()
-                }
-            };
-            let _ = writeln!(
-                t,
-                "  {:<34} {:>12.4} {:<5} mesh {}, time step {}, together ≤ {}",
-                o.label,
-                b.values[k],
-                o.unit,
-                pct(em),
-                pct(ed),
-                pct(em.abs() + ed.abs()).trim_start_matches('+')
-            );
-        }
-    }
-    for r in &st.runs {
-        if let Some(e) = &r.error {
-            let _ = writeln!(
-                t,
-                "run x{} mesh, x{} dt stopped early: {e}",
-                r.mesh_factor, r.dt_factor
-            );
-        }
-    }
-    t
-}
-
-/// The plot: per output, |error| (log) against wall time (log), the mesh series and the Δt series.
-pub fn plot(path: &Path, st: &Study) -> Result<(), AppError> {
-    init_fonts();
-    let err = plot_err(path);
-    let n = st.outputs.len();
-    let cols = n.clamp(1, 3);
-    let rows = n.div_ceil(cols).max(1);
-    let root =
-        BitMapBackend::new(path, (680 * cols as u32, 480 * rows as u32 + 50)).into_drawing_area();
-    root.fill(&WHITE).map_err(&err)?;
-    let root = root
-        .titled(
-            &format!(
-                "{}: error against wall time (blue: element length, orange: time step; labels: factor)",
-                st.title
-            ),
-            ("sans-serif", 22),
-        )
-        .map_err(&err)?;
-    let areas = root.split_evenly((rows, cols));
-    let blue = RGBColor(20, 90, 200);
-    let orange = RGBColor(230, 120, 20);
-    for (k, o) in st.outputs.iter().enumerate() {
-        // Per series: (wall time, |error|, factor) points and a colour.
-        let mut series: Vec<(Vec<Pt>, RGBColor)> = Vec::new();
-        for (ser, c) in [(Series::Mesh, blue), (Series::TimeStep, orange)] {
-            let pts: Vec<(f64, f64, f64)> = st
-                .series(ser)
-                .iter()
-                .filter_map(|r| {
-                    let (em, ed) = error_of(st, k, r);
-                    let (e, f) = if ser == Series::Mesh {
-                        (em, r.mesh_factor)
-                    } else {
-                        (ed, r.dt_factor)
-                    };
-                    (e.is_finite() && e.abs() > 0.0 && r.wall_seconds > 0.0).then_some((
-                        r.wall_seconds,
-                        e.abs(),
-                        f,
-                    ))
-                })
-                .collect();
-            series.push((pts, c));
-        }
-        let all = series.iter().flat_map(|(v, _)| v.iter());
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-        for &(x, y, _) in all {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-        if !x0.is_finite() {
-            (x0, x1, y0, y1) = (0.1, 1.0, 1e-3, 1.0);
-        }
-        let a = (a_or(&st.analyses[k].0), a_or(&st.analyses[k].1));
-        let caption = format!("{} ({}); ref.: mesh {}, dt {}", o.label, o.unit, a.0, a.1);
-        let mut chart = ChartBuilder::on(&areas[k])
-            .caption(caption, ("sans-serif", 15))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(75)
-            .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5)
-                    .log_scale()
-                    .with_key_points(one_two_five(x0 / 1.5, x1 * 1.5)),
-                (y0 / 3.0..y1 * 3.0)
-                    .log_scale()
-                    .with_key_points(one_two_five(y0 / 3.0, y1 * 3.0)),
-            )
-            .map_err(&err)?;
-        chart
-            .configure_mesh()
-            .x_desc("wall time of the run (s)")
-            .y_desc("|error| (%)")
-            .x_labels(6)
-            .y_labels(6)
-            .x_label_formatter(&|v| short(*v))
-            .y_label_formatter(&|v| short(*v))
-            .max_light_lines(1)
-            .label_style(("sans-serif", 13))
-            .draw()
-            .map_err(&err)?;
-        for (pts, c) in &series {
-            chart
-                .draw_series(LineSeries::new(
-                    pts.iter().map(|p| (p.0, p.1)),
-                    c.stroke_width(2),
-                ))
-                .map_err(&err)?;
-            chart
-                .draw_series(pts.iter().map(|p| {
-                    EmptyElement::at((p.0, p.1))
-                        + Circle::new((0, 0), 4, c.filled())
-                        + Text::new(
-                            format!("x{}", p.2),
-                            (7, -16),
-                            ("sans-serif", 14).into_font().color(c),
-                        )
-                }))
-                .map_err(&err)?;
-        }
-    }
-    root.present().map_err(&err)?;
-    Ok(())
-}
-
-/// Axis key points 1, 2, 5 × 10ᵏ within `[lo, hi]`.
-fn one_two_five(lo: f64, hi: f64) -> Vec<f64> {
-    let mut v = Vec::new();
-    let mut k = lo.log10().floor() as i32;
-    while 10f64.powi(k) <= hi && k < 300 {
-        for m in [1.0, 2.0, 5.0] {
-            let x = m * 10f64.powi(k);
-            if x >= lo && x <= hi {
-                v.push(x);
-            }
-        }
-        k += 1;
-    }
-    v
-}
-
-/// A short axis label: `0.001`, `0.5`, `2`, `30`.
-fn short(v: f64) -> String {
-    if v <= 0.0 || !v.is_finite() {
-        return String::new();
-    }
-    let decimals = (-v.log10()).ceil().max(0.0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
-}
-
-/// A plotted point: (wall time s, |error| %, factor).
-type Pt = (f64, f64, f64);
-
-fn a_or(a: &SeriesAnalysis) -> String {
-    match (a.order, a.reference_kind) {
-        (Some(p), _) => format!("Richardson p={p:.1}"),
-        (None, "finest") => "finest".into(),
-        _ => "none".into(),
-    }
-}
-
-/// The whole command: runs the study and writes `DIR/convergence.csv`, `DIR/convergence.json`,
-/// `DIR/convergence.png` and the variant scenes in `DIR/scenes/`.
-pub fn command(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result<String, AppError> {
-    let st = study(case, opts)?;
-    std::fs::create_dir_all(out.join("scenes")).map_err(|e| AppError::io(out, e))?;
-    let stem = case
-        .file_stem()
-        .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
-    for r in &st.runs {
-        let p = out.join("scenes").join(format!(
-            "{stem}-mesh{}-dt{}.toml",
-            r.mesh_factor, r.dt_factor
-        ));
-        std::fs::write(&p, &r.scene_text).map_err(|e| AppError::io(&p, e))?;
-    }
-    let c = out.join("convergence.csv");
-    std::fs::write(&c, csv(&st)).map_err(|e| AppError::io(&c, e))?;
-    let j = out.join("convergence.json");
-    std::fs::write(
-        &j,
-        serde_json::to_string_pretty(&to_json(&st)).unwrap_or_default(),
-    )
-    .map_err(|e| AppError::io(&j, e))?;
-    let png = out.join("convergence.png");
-    plot(&png, &st)?;
-    let mut t = summary_text(&st);
-    let _ = writeln!(
-        t,
-        "wrote {}, {}, {} and the variant scenes in {}",
-        c.display(),
-        j.display(),
-        png.display(),
-        out.join("scenes").display()
-    );
-    Ok(t)
 }
 
 #[cfg(test)]
@@ -960,19 +574,5 @@ mod tests {
         let single = analyse(&[1.0], &[2.0]);
         assert_eq!(single.reference_kind, "none");
         assert!(single.errors_percent[0].is_nan());
-    }
-
-    #[test]
-    fn variant_text_scales_lengths_and_step() {
-        let text = "title = \"t\"\n[[mesh]]\nto = 10.0\nelement_length = 2\n[[mesh]]\nto = 20.0\nelement_length = 0.5\n[dynamic]\nduration = 1.0\ntime_step = 0.1\noutput_interval = 0.2\n";
-        let v = variant_text("x.toml", text, 0.5, 0.25).expect("value");
-        let t: toml::Table = v.parse().expect("value");
-        let m = t["mesh"].as_array().expect("value");
-        assert_eq!(m[0]["element_length"].as_float(), Some(1.0));
-        assert_eq!(m[1]["element_length"].as_float(), Some(0.25));
-        assert_eq!(t["dynamic"]["time_step"].as_float(), Some(0.025));
-        assert!(t["dynamic"].get("output_interval").is_none());
-        let e = variant_text("x.toml", "[dynamic]\ntime_step = 0.1\n", 1.0, 1.0).unwrap_err();
-        assert!(e.to_string().contains("mesh"), "{e}");
     }
 }

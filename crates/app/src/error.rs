@@ -1,7 +1,11 @@
-//! Errors of the `catena` program. Every message says which file, which key and what was expected;
-//! nothing reachable from input panics.
+//! Errors of catena. Every message says which file, which key and what was expected, or when, where
+//! and how much a solve failed; nothing reachable from input panics.
 
 use std::path::PathBuf;
+
+use catena_fe::dynamics::StepError;
+use catena_fe::sparse::SolveError;
+use catena_fe::statics::StaticError;
 
 /// An error in a scene (case) file.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -27,7 +31,7 @@ pub enum SceneError {
     },
 }
 
-/// An error of the program.
+/// An error of catena (library and front ends).
 #[derive(Debug, thiserror::Error)]
 pub enum AppError {
     /// A file could not be read or written.
@@ -41,12 +45,52 @@ pub enum AppError {
     /// The case file is wrong.
     #[error(transparent)]
     Scene(#[from] SceneError),
-    /// The case ran but could not be completed.
+    /// The static solve failed (load factor, iteration, residual, node and arc length).
+    #[error("{file}: {source}")]
+    Statics {
+        /// The case file.
+        file: String,
+        /// What the solver reports.
+        source: StaticError,
+    },
+    /// A dynamic step failed (time, step, Δt, cuts, iterations, residual, node and arc length).
+    #[error("{file}: {source}")]
+    Step {
+        /// The case file.
+        file: String,
+        /// What the stepper reports.
+        source: StepError,
+    },
+    /// The linear solver could not be set up.
+    #[error("{file}: {source}")]
+    Solver {
+        /// The case file.
+        file: String,
+        /// What faer reports.
+        source: SolveError,
+    },
+    /// A checkpoint that does not fit the run it is to continue.
+    #[error("{file}: the checkpoint does not match this run: {what}")]
+    Checkpoint {
+        /// The checkpoint file.
+        file: String,
+        /// What does not match.
+        what: String,
+    },
+    /// The case ran but could not be completed, or a request about it is wrong.
     #[error("{file}: {message}")]
     Run {
         /// The case file.
         file: String,
         /// What happened, with the key it concerns.
+        message: String,
+    },
+    /// An output (HDF5, CSV, JSON) could not be written.
+    #[error("{}: {message}", path.display())]
+    Output {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
         message: String,
     },
     /// A plot could not be drawn.

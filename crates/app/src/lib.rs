@@ -1,22 +1,25 @@
-//! The `catena` command-line program, as a library so that its commands can be tested.
+//! catena, the simulation library: every command, study and binding shares it. It has no
+//! dependency on HDF5, plotting or a command-line parser; the crates above it (`catena-io`,
+//! `catena-cli`) write files and talk to users.
 //!
-//! - [`scene`]: reading TOML case files into validated models, with errors that name the file and key;
-//! - [`soil_test`]: `catena soil-test`, the seabed law alone on one pipe segment;
-//! - [`statics_cmd`]: `catena static`, the static configuration of a line on the seabed;
-//! - [`run_cmd`]: `catena run`, the statics then the dynamics;
-//! - [`convergence`]: `catena convergence`, the same scene with the mesh and the time step refined:
-//!   key outputs, their errors (Richardson) and the wall time of each run;
-//! - [`h5`]: the HDF5 results layout;
-//! - [`plot`]: PNG plots (plotters, with an embedded DejaVu Sans font so no system font is needed);
-//! - [`error`]: the program's error type.
+//! - [`scene`]: reading case files into checked scenes (pure: text in, scene out; files a scene
+//!   names come through a [`scene::Resolver`]); edits by key path ([`scene::edit`]);
+//! - [`statics`]: the static configuration (catenary seed, Newton, flexjoint neutral angle);
+//! - [`run`]: the dynamic run, each converged step handed to [`observe::Observer`]s;
+//! - [`observe`]: the observer trait and the built-in observers (envelopes, gauges, top history,
+//!   checkpoints);
+//! - [`checkpoint`]: checkpoints (State, solver memory, observers' states, scene hash, version);
+//! - [`convergence`]: the convergence study (what accuracy costs in time);
+//! - [`soil_test`]: the soil element test;
+//! - [`error`]: the error types.
 
+pub mod checkpoint;
 pub mod convergence;
 pub mod error;
-pub mod h5;
-pub mod plot;
-pub mod run_cmd;
+pub mod observe;
+pub mod run;
 pub mod scene;
 pub mod soil_test;
-pub mod statics_cmd;
+pub mod statics;
 
-pub use error::AppError;
+pub use error::{AppError, SceneError};

@@ -8,9 +8,12 @@ use common::Edit;
 
 use std::path::{Path, PathBuf};
 
-use catena::run_cmd;
+use catena::checkpoint::Checkpoint;
+use catena::observe::{Checkpointer, Stop};
+use catena::run::{self as run_cmd, DynamicRun, RunOptions};
 use catena::scene::riser::RiserScene;
-use catena::statics_cmd;
+use catena::scene::DirResolver;
+use catena::statics as statics_cmd;
 use catena_fe::dynamics::{self, DynWorkspace};
 use catena_seabed::law::Law;
 use catena_seabed::rq::Mode;
@@ -24,9 +27,16 @@ fn heave_text() -> String {
 }
 
 fn run_text(name: &str, text: &str) -> run_cmd::DynamicRun {
-    let scene = RiserScene::parse(name, text).expect("scene");
+    let scene = RiserScene::parse(
+        name,
+        text,
+        &DirResolver {
+            dir: root().join("cases"),
+        },
+    )
+    .expect("scene");
     let st = statics_cmd::solve(scene).expect("statics");
-    run_cmd::run(st, None, false).expect("runs")
+    run_cmd::run(st, &mut [], RunOptions::default()).expect("runs")
 }
 
 /// The heave benchmark with HHT (α = −0.1) and with Newmark (β = 1/4, γ = 1/2): over t ∈ [50, 100] s
@@ -57,7 +67,7 @@ fn hht_and_newmark_agree_on_the_heave_benchmark() {
     );
     assert!(((tmax1 - tmin1) / (tmax2 - tmin2) - 1.0).abs() < 0.01);
     assert!((m1 / m2 - 1.0).abs() < 0.02);
-    assert!(hht.error.is_none() && nm.error.is_none());
+    assert!(hht.completed() && nm.completed());
 }
 
 /// Prescribed heave imposed consistently: halving Δt changes the top tension extremes by less than
@@ -99,18 +109,24 @@ fn seabed_history_is_committed_only_at_converged_steps() {
     let text = rq_heave_text()
         .edit("duration = 100.0", "duration = 15.0")
         .edit("envelope_start = 50.0", "envelope_start = 0.0");
-    let scene = RiserScene::parse("rq-heave", &text).expect("scene");
+    let scene = RiserScene::parse(
+        "rq-heave",
+        &text,
+        &DirResolver {
+            dir: root().join("cases"),
+        },
+    )
+    .expect("scene");
     assert!(matches!(
         scene.model.seabed.expect("seabed").seabed.law,
         Law::RandolphQuiggin(_)
     ));
     let st = statics_cmd::solve(scene).expect("statics");
-    let spec = st.scene.dynamic.clone().expect("dynamic");
-    let (model, pl) = (&st.model, &st.placement);
+    let (spec, dm) = run_cmd::prepare(&st).expect("dynamic model");
+    let (model, pl) = (&dm.line, &dm.placement);
     let sb = model.seabed.expect("seabed").seabed;
     let mut ws = DynWorkspace::new(model).expect("ws");
-    let mut state =
-        dynamics::initial_state(model, pl, spec.settings.hydro.as_ref(), &st.u, &mut ws);
+    let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
     for (i, h) in state.history.iter().enumerate() {
         let p = st.results.penetration[i];
         if p > 0.0 {
@@ -125,8 +141,7 @@ fn seabed_history_is_committed_only_at_converged_steps() {
     let steps = (spec.duration / spec.dt).round() as usize;
     for _ in 0..steps {
         let prev = state.history.clone();
-        let info = dynamics::advance(model, pl, &spec.settings, &mut state, &mut ws, spec.dt)
-            .expect("step");
+        let info = dynamics::advance(&dm, &mut state, &mut ws, spec.dt).expect("step");
         assert_eq!(info.cuts, 0);
         for i in 0..model.nodes() {
             let z = model
@@ -145,70 +160,6 @@ fn seabed_history_is_committed_only_at_converged_steps() {
     );
 }
 
-/// `catena run` writes the /dynamic layout: time series of n_t and fields of n_t × n_nodes.
-#[test]
-fn run_writes_dynamic_layout() {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_layout");
-    let case = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_layout.toml");
-    std::fs::write(
-        &case,
-        heave_text()
-            .edit("duration = 100.0", "duration = 5.0")
-            .edit(
-                "envelope_start = 50.0",
-                "envelope_start = 0.0\noutput_interval = 0.1",
-            ),
-    )
-    .expect("case");
-    run_cmd::command(&case, &out, false).expect("runs");
-    let f = hdf5::File::open(out.join("results.h5")).expect("h5");
-    let t = f
-        .dataset("dynamic/time")
-        .expect("time")
-        .read_raw::<f64>()
-        .expect("t");
-    assert_eq!(t.len(), 51);
-    assert!((t[50] - 5.0).abs() < 1e-9);
-    for name in [
-        "x",
-        "z",
-        "effective_tension",
-        "bending_moment",
-        "penetration",
-        "seabed_force",
-        "seabed_mode",
-    ] {
-        let ds = f.dataset(&format!("dynamic/{name}")).expect(name);
-        assert_eq!(ds.shape(), vec![51, 401], "{name}");
-    }
-    let top_z = f
-        .dataset("dynamic/top_z")
-        .expect("top_z")
-        .read_raw::<f64>()
-        .expect("z");
-    // z = 1000 + 2·r(t)·sin(2πt/10) at t = 5 s (r(0.5) = 0.5): sin(π) = 0.
-    assert!((top_z[50] - 1000.0).abs() < 1e-9);
-    assert!((top_z[25] - (1000.0 + 2.0 * 0.5f64.powi(3) * (10.0 - 7.5 + 1.5) * 0.0)).abs() < 1.0);
-    let js: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
-            .expect("json");
-    assert_eq!(js["dynamic"]["completed"], true);
-    for key in [
-        "moment_min",
-        "moment_max",
-        "moment_range",
-        "tension_min",
-        "tension_max",
-        "tension_range",
-    ] {
-        let v = js["dynamic"]["envelopes"][key].as_array().expect(key);
-        assert_eq!(v.len(), 401, "{key}");
-    }
-    for png in ["static.png", "dynamic.png"] {
-        assert!(std::fs::metadata(out.join(png)).expect(png).len() > 10_000);
-    }
-}
-
 /// cases.md / issue: the 1000 m SCR under slow heave (2 m, 300 s, k = 100 kN/m/m²) is quasi-static:
 /// at every node the dynamic moment range over t ∈ [300, 900] s matches the range spanned by static
 /// solves with the top 2 m up, at rest and 2 m down, within 2 % of the largest range.
@@ -216,7 +167,14 @@ fn run_writes_dynamic_layout() {
 fn slow_heave_is_quasi_static() {
     let text =
         std::fs::read_to_string(root().join("cases/scr1000/slow-heave-k100.toml")).expect("case");
-    let scene = RiserScene::parse("slow-heave-k100", &text).expect("scene");
+    let scene = RiserScene::parse(
+        "slow-heave-k100",
+        &text,
+        &DirResolver {
+            dir: root().join("cases"),
+        },
+    )
+    .expect("scene");
     // The flexjoint keeps the baseline's neutral angle (zero moment at rest), as in the dynamics.
     let base = statics_cmd::solve(scene.clone()).expect("statics");
     let neutral = base.summary.top_angle_from_vertical;
@@ -227,7 +185,12 @@ fn slow_heave_is_quasi_static() {
         s.ends.top.1 += dz;
         moments.push(statics_cmd::solve(s).expect("statics").results.moment);
     }
-    let r = run_cmd::run(statics_cmd::solve(scene).expect("statics"), None, false).expect("runs");
+    let r = run_cmd::run(
+        statics_cmd::solve(scene).expect("statics"),
+        &mut [],
+        RunOptions::default(),
+    )
+    .expect("runs");
     let dyn_range = r.envelopes.moment_range();
     let n = dyn_range.len();
     let stat_range: Vec<f64> = (0..n)
@@ -261,14 +224,31 @@ fn watchet_suction_deepens_the_pull_up_dip() {
     let run = |name: &str| {
         let text = std::fs::read_to_string(root().join(format!("cases/watchet/{name}.toml")))
             .expect("case");
-        let st =
-            statics_cmd::solve(RiserScene::parse(name, &text).expect("scene")).expect("statics");
-        run_cmd::run(st, None, false).expect("runs")
+        let st = statics_cmd::solve(
+            RiserScene::parse(
+                name,
+                &text,
+                &DirResolver {
+                    dir: root().join("cases"),
+                },
+            )
+            .expect("scene"),
+        )
+        .expect("statics");
+        run_cmd::run(st, &mut [], RunOptions::default()).expect("runs")
     };
     let with = run("pull-up-lay-down");
     let without = run("pull-up-lay-down-no-suction");
-    let (up_w, up_w_max, down_w, _) = run_cmd::gauge_by_direction(&with, 0);
-    let (up_n, _, down_n, _) = run_cmd::gauge_by_direction(&without, 0);
+    let dir = |r: &DynamicRun| {
+        let [(rmin, rmax), (fmin, _)] = r.gauges.traces[0].by_direction;
+        (
+            rmin.expect("rising"),
+            rmax.expect("rising"),
+            fmin.expect("falling"),
+        )
+    };
+    let (up_w, up_w_max, down_w) = dir(&with);
+    let (up_n, _, down_n) = dir(&without);
     println!(
         "gauge D pull-up minimum: {:.3} kN·m with suction, {:.3} without; lay-down: {:.3} / {:.3}",
         up_w / 1e3,
@@ -298,7 +278,13 @@ fn watchet_suction_deepens_the_pull_up_dip() {
     let r = &with.statics.results;
     let w = with.statics.scene.line.2;
     for s in [70.0, 80.0, 90.0, 100.0, 105.0] {
-        let i = r.arc.iter().position(|a| *a >= s).expect("node");
+        let i = with
+            .model
+            .line
+            .arc
+            .iter()
+            .position(|a| *a >= s)
+            .expect("node");
         println!(
             "arc {s}: F/w − 1 = {:.3e}",
             sb.backbone(r.penetration[i]).total() / w - 1.0
@@ -306,49 +292,14 @@ fn watchet_suction_deepens_the_pull_up_dip() {
     }
     // The grounded part is only 65 m and the contact boundary layer decays over ~(4EI/k)^¼ ≈ 7 m,
     // oscillating: 55 m past touchdown (arc 100 m) it has decayed to ~1e-4.
-    let i = r.arc.iter().position(|a| *a >= 100.0).expect("node");
+    let i = with
+        .model
+        .line
+        .arc
+        .iter()
+        .position(|a| *a >= 100.0)
+        .expect("node");
     assert!((sb.backbone(r.penetration[i]).total() / w - 1.0).abs() < 2e-4);
-}
-
-/// A run whose steps cannot converge (one Newton iteration allowed) cuts the step, then stops with
-/// an error that says when (t, step, iteration), where (node, arc length) and by how much (the
-/// residual), and keeps its results: the file has the statics and every record up to the last
-/// converged step, and summary.json says the run did not complete.
-#[test]
-fn failed_run_reports_context_and_keeps_results() {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail");
-    let case = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail.toml");
-    let text = heave_text()
-        .edit("duration = 100.0", "duration = 5.0")
-        .edit(
-            "envelope_start = 50.0",
-            "envelope_start = 0.0\nmax_iterations = 1\nmax_step_cuts = 2",
-        );
-    std::fs::write(&case, text).expect("case");
-    let err = run_cmd::command(&case, &out, false)
-        .expect_err("cannot converge")
-        .to_string();
-    println!("{err}");
-    for needle in [
-        "dyn_fail.toml",
-        "did not converge after 2 step cuts",
-        "t = ",
-        "step 1",
-        "iteration",
-        "relative residual",
-        "node",
-        "arc length",
-        "results up to the last converged step",
-    ] {
-        assert!(err.contains(needle), "`{needle}` missing from: {err}");
-    }
-    let f = hdf5::File::open(out.join("results.h5")).expect("h5 kept");
-    assert_eq!(f.dataset("static/arc").expect("static").shape(), vec![401]);
-    assert_eq!(f.dataset("dynamic/time").expect("time").shape(), vec![1]);
-    let js: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
-            .expect("json");
-    assert_eq!(js["dynamic"]["completed"], false);
 }
 
 /// A top motion given as a CSV series (beside the case file) drives the top exactly as written, and
@@ -379,18 +330,23 @@ fn series_motion_and_seabed_damping_through_a_case() {
     let case = dir.join("series.toml");
     std::fs::write(&case, &text).expect("case");
     let scene = statics_cmd::read_scene(&case).expect("scene");
-    let r = run_cmd::run(statics_cmd::solve(scene).expect("statics"), None, false).expect("runs");
+    let r = run_cmd::run(
+        statics_cmd::solve(scene).expect("statics"),
+        &mut [],
+        RunOptions::default(),
+    )
+    .expect("runs");
     let i = r
-        .hist
+        .top
         .t
         .iter()
         .position(|t| (*t - 12.5).abs() < 1e-9)
         .expect("t = 12.5");
     let expect = 1000.0 + 1.5 * (std::f64::consts::TAU * 12.5 / 10.0).sin() * (12.5 / 20.0);
     assert!(
-        (r.hist.top_z[i] - expect).abs() < 2e-3,
+        (r.top.top_z[i] - expect).abs() < 2e-3,
         "{} vs {expect}",
-        r.hist.top_z[i]
+        r.top.top_z[i]
     );
     // Seabed damping (per unit contact area): the same run with a damped seabed.
     let damped_text = text.edit(
@@ -402,8 +358,8 @@ fn series_motion_and_seabed_damping_through_a_case() {
     std::fs::write(&case2, &damped_text).expect("case");
     let r2 = run_cmd::run(
         statics_cmd::solve(statics_cmd::read_scene(&case2).expect("scene")).expect("statics"),
-        None,
-        false,
+        &mut [],
+        RunOptions::default(),
     )
     .expect("runs");
     let (m1, ..) = run_cmd::key_numbers(&r);
@@ -437,7 +393,7 @@ fn repeated_runs_are_bit_identical_whatever_the_threads() {
     let b = pool(4).install(|| run_text("det-b", &text));
     let (c, d) = pool(2).join(|| run_text("det-c", &text), || run_text("det-d", &text));
     for other in [&b, &c, &d] {
-        assert_eq!(a.hist.top_tension, other.hist.top_tension);
+        assert_eq!(a.top, other.top);
         assert_eq!(a.envelopes.moment_min, other.envelopes.moment_min);
         assert_eq!(a.envelopes.moment_max, other.envelopes.moment_max);
         assert_eq!(a.envelopes.penetration_max, other.envelopes.penetration_max);
@@ -445,10 +401,13 @@ fn repeated_runs_are_bit_identical_whatever_the_threads() {
     }
 }
 
-/// Checkpoint and restart (rapier's snapshot round trip): a run on the hysteretic seabed stopped at a
-/// checkpoint (step 100, State written to JSON and read back) and restarted with a freshly rebuilt
-/// Model and Workspace continues **bit-for-bit** like the uninterrupted run with the same checkpoint
-/// interval: every recorded top tension, gauge-free history value and the final State are identical.
+/// Checkpoint and restart (rapier's snapshot round trip): a run on the hysteretic seabed stopped at
+/// a checkpoint (State, solver memory and observers written to JSON and read back) and restarted
+/// with a freshly rebuilt Model and Workspace is **bit-for-bit** the uninterrupted run, whatever the
+/// checkpoint interval of either: the uninterrupted run here writes no checkpoint at all, the
+/// interrupted one checkpoints every 37 steps and stops at step 111, and the restarted one
+/// checkpoints every 50. Its envelopes, gauges and top history cover the whole run and equal the
+/// uninterrupted run's; so does the final State.
 #[test]
 fn restart_from_checkpoint_is_bit_for_bit() {
     let text = rq_heave_text()
@@ -456,60 +415,185 @@ fn restart_from_checkpoint_is_bit_for_bit() {
         .edit("envelope_start = 50.0", "envelope_start = 0.0");
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("restart");
     std::fs::create_dir_all(&dir).expect("dir");
-    let solve = || {
-        statics_cmd::solve(RiserScene::parse("restart", &text).expect("scene")).expect("statics")
+    let solve = |text: &str| {
+        statics_cmd::solve(
+            RiserScene::parse(
+                "restart",
+                text,
+                &DirResolver {
+                    dir: root().join("cases"),
+                },
+            )
+            .expect("scene"),
+        )
+        .expect("statics")
     };
-    let opts = |path: &str| run_cmd::RunOptions {
-        checkpoint_every: Some(100),
-        checkpoint_path: Some(dir.join(path)),
-        ..run_cmd::RunOptions::default()
-    };
-    // Uninterrupted, with the same checkpoint interval.
-    let full = run_cmd::run_with(solve(), None, opts("full.json")).expect("runs");
-    // Stopped at step 100, then restarted from the file.
-    let first = run_cmd::run_with(
-        solve(),
-        None,
-        run_cmd::RunOptions {
-            stop_after: Some(100),
-            ..opts("cut.json")
+    // Uninterrupted, no checkpoints; its final State through a checkpointer at the last step.
+    let mut end = Checkpointer::new(&dir.join("full.json"), 200);
+    let full = run_cmd::run(solve(&text), &mut [&mut end], RunOptions::default()).expect("runs");
+    // Checkpoints every 37 steps, stopped after step 111 (the last checkpoint is at 111).
+    let mut cp37 = Checkpointer::new(&dir.join("cut.json"), 37);
+    let first = run_cmd::run(
+        solve(&text),
+        &mut [&mut cp37],
+        RunOptions {
+            stop_after: Some(111),
+            ..RunOptions::default()
         },
     )
     .expect("runs");
-    assert_eq!(first.hist.t.len(), 101);
-    let cp = run_cmd::Checkpoint::read(&dir.join("cut.json")).expect("checkpoint");
-    assert_eq!(cp.step, 100);
-    let second = run_cmd::run_with(
-        solve(),
-        None,
-        run_cmd::RunOptions {
-            restart: Some(cp),
-            ..opts("after.json")
+    assert_eq!(first.steps, 111);
+    assert!(matches!(first.stop, Some(Stop::StoppedAfter(111))));
+    let cp = Checkpoint::read(&dir.join("cut.json")).expect("checkpoint");
+    assert_eq!(cp.step, 111);
+    assert!(
+        cp.solver.is_some(),
+        "the solver memory travels with the checkpoint"
+    );
+    let mut cp50 = Checkpointer::new(&dir.join("after.json"), 50);
+    let second = run_cmd::run(
+        solve(&text),
+        &mut [&mut cp50],
+        RunOptions {
+            restart: Some(cp.clone()),
+            restart_file: "cut.json".into(),
+            stop_after: None,
         },
     )
     .expect("runs");
-    assert_eq!(second.hist.t.len(), 100);
-    assert_eq!(&full.hist.t[101..], &second.hist.t[..]);
-    assert_eq!(&full.hist.top_tension[101..], &second.hist.top_tension[..]);
-    assert_eq!(&full.hist.top_z[101..], &second.hist.top_z[..]);
-    let end_full = run_cmd::Checkpoint::read(&dir.join("full.json")).expect("cp");
-    let end_restarted = run_cmd::Checkpoint::read(&dir.join("after.json")).expect("cp");
+    assert!(second.completed());
+    assert_eq!(second.steps, 200);
+    assert_eq!(full.top, second.top, "top history over the whole run");
+    assert_eq!(
+        full.envelopes, second.envelopes,
+        "envelopes over the whole run"
+    );
+    assert_eq!(full.gauges.traces, second.gauges.traces);
+    let end_full = Checkpoint::read(&dir.join("full.json")).expect("cp");
+    let end_restarted = Checkpoint::read(&dir.join("after.json")).expect("cp");
     assert_eq!(end_full.step, 200);
-    assert_eq!(end_full.state, end_restarted.state);
-    // A checkpoint of another scene is refused.
-    let other = statics_cmd::solve(
-        RiserScene::parse("other", &text.edit("f_suc = 0.6", "f_suc = 0.5")).expect("scene"),
-    )
-    .expect("statics");
-    let cp = run_cmd::Checkpoint::read(&dir.join("cut.json")).expect("checkpoint");
-    let err = run_cmd::run_with(
-        other,
-        None,
-        run_cmd::RunOptions {
+    assert_eq!(
+        end_full.state, end_restarted.state,
+        "final State bit for bit"
+    );
+    // A checkpoint of another scene is refused, naming what differs.
+    let err = run_cmd::run(
+        solve(&text.edit("f_suc = 0.6", "f_suc = 0.5")),
+        &mut [],
+        RunOptions {
             restart: Some(cp),
-            ..Default::default()
+            restart_file: "cut.json".into(),
+            stop_after: None,
         },
     )
-    .expect_err("different scene");
-    assert!(err.to_string().contains("different scene"));
+    .expect_err("another scene");
+    assert!(err.to_string().contains("another scene"), "{err}");
+}
+
+/// A checkpoint that parses but does not fit the run is a clear error naming the file and what
+/// differs, never a panic: arrays one entry short, empty or one entry long (the three inputs that
+/// panicked before), a history of another length, a non-finite value, a time that is not
+/// `step·Δt`, a step beyond the run, another version, a solver memory of the wrong size.
+#[test]
+fn malformed_checkpoints_are_refused_with_the_reason() {
+    let text = rq_heave_text()
+        .edit("duration = 100.0", "duration = 2.0")
+        .edit("envelope_start = 50.0", "envelope_start = 0.0");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_checkpoints");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let solve = || {
+        statics_cmd::solve(
+            RiserScene::parse(
+                "bad-cp",
+                &text,
+                &DirResolver {
+                    dir: root().join("cases"),
+                },
+            )
+            .expect("scene"),
+        )
+        .expect("statics")
+    };
+    let mut c = Checkpointer::new(&dir.join("good.json"), 10);
+    run_cmd::run(
+        solve(),
+        &mut [&mut c],
+        RunOptions {
+            stop_after: Some(10),
+            ..RunOptions::default()
+        },
+    )
+    .expect("runs");
+    let good = Checkpoint::read(&dir.join("good.json")).expect("checkpoint");
+    type Mutation = Box<dyn Fn(&mut Checkpoint)>;
+    let cases: Vec<(&str, Mutation, &str)> = vec![
+        (
+            "v short",
+            Box::new(|c| {
+                c.state.v.pop();
+            }),
+            "state.v",
+        ),
+        ("a empty", Box::new(|c| c.state.a.clear()), "state.a"),
+        (
+            "f_prev long",
+            Box::new(|c| c.state.f_prev.push(0.0)),
+            "state.f_prev",
+        ),
+        (
+            "history short",
+            Box::new(|c| {
+                c.state.history.pop();
+            }),
+            "state.history",
+        ),
+        ("u nan", Box::new(|c| c.state.u[7] = f64::NAN), "state.u[7]"),
+        ("t off", Box::new(|c| c.state.t += 0.013), "state.t"),
+        (
+            "step beyond",
+            Box::new(|c| c.step = 1_000_000),
+            "step 1000000",
+        ),
+        (
+            "version",
+            Box::new(|c| c.catena_version = "0.0.1".into()),
+            "0.0.1",
+        ),
+        (
+            "solver",
+            Box::new(|c| {
+                if let Some(m) = &mut c.solver {
+                    m.values.pop();
+                }
+            }),
+            "solver memory",
+        ),
+        (
+            "observers",
+            Box::new(|c| {
+                c.observers.remove("envelopes");
+            }),
+            "envelopes",
+        ),
+    ];
+    for (label, mutate, needle) in cases {
+        let mut cp = good.clone();
+        mutate(&mut cp);
+        let err = run_cmd::run(
+            solve(),
+            &mut [],
+            RunOptions {
+                restart: Some(cp),
+                restart_file: "bad.json".into(),
+                stop_after: None,
+            },
+        )
+        .expect_err(label)
+        .to_string();
+        println!("{label}: {err}");
+        assert!(
+            err.contains("bad.json") && err.contains(needle),
+            "{label}: {err}"
+        );
+    }
 }

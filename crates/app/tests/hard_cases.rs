@@ -8,9 +8,10 @@ use common::Edit;
 
 use std::path::{Path, PathBuf};
 
-use catena::run_cmd::{self, DynamicRun};
+use catena::run::{self as run_cmd, DynamicRun, RunOptions};
 use catena::scene::riser::RiserScene;
-use catena::statics_cmd;
+use catena::scene::DirResolver;
+use catena::statics as statics_cmd;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -19,9 +20,19 @@ fn root() -> PathBuf {
 fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
     let text =
         edit(std::fs::read_to_string(root().join(format!("cases/{name}.toml"))).expect("case"));
-    let st = statics_cmd::solve(RiserScene::parse(name, &text).expect("scene")).expect("statics");
-    let r = run_cmd::run(st, None, false).expect("runs");
-    assert!(r.error.is_none(), "{name}: {:?}", r.error);
+    let st = statics_cmd::solve(
+        RiserScene::parse(
+            name,
+            &text,
+            &DirResolver {
+                dir: root().join("cases"),
+            },
+        )
+        .expect("scene"),
+    )
+    .expect("statics");
+    let r = run_cmd::run(st, &mut [], RunOptions::default()).expect("runs");
+    assert!(r.completed(), "{name}: {:?}", r.stop);
     let e = &r.envelopes;
     for v in [
         &e.moment_min,
@@ -36,10 +47,7 @@ fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
         );
     }
     assert!(
-        r.hist
-            .top_tension
-            .iter()
-            .all(|t| t.is_finite() && *t < 20e6),
+        r.top.top_tension.iter().all(|t| t.is_finite() && *t < 20e6),
         "{name}: top tension"
     );
     println!(
@@ -162,11 +170,11 @@ fn short_elements_next_to_velocity_steps() {
         t.edit("element_length = 0.0625", "element_length = 0.25")
     });
     let ext = |r: &DynamicRun| {
-        let m = &r.hist.gauge_moment[0];
+        let m = &r.gauges.traces[0].moment;
         (
             m.iter().copied().fold(f64::INFINITY, f64::min),
             m.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            r.hist.top_tension.iter().copied().fold(0.0, f64::max),
+            r.top.top_tension.iter().copied().fold(0.0, f64::max),
         )
     };
     let (a, b) = (ext(&fine), ext(&coarse));
@@ -185,9 +193,9 @@ fn short_elements_next_to_velocity_steps() {
 #[test]
 fn velocity_steps() {
     let r = run_case("hard/velocity-step", |t| t);
-    let z = *r.hist.top_z.last().expect("records");
+    let z = *r.top.top_z.last().expect("records");
     assert!((z - 1000.0).abs() < 1e-9, "{z}");
-    let h = &r.hist;
+    let h = &r.top;
     let mean = |a: f64, b: f64| {
         let v: Vec<f64> =
             h.t.iter()
@@ -221,7 +229,7 @@ fn three_hour_heave_benchmark() {
         t.edit("duration = 100.0", "duration = 10800.0")
             .edit("envelope_start = 50.0", "envelope_start = 0.0")
     });
-    let h = &r.hist;
+    let h = &r.top;
     let window = |a: f64, b: f64| {
         let v: Vec<f64> =
             h.t.iter()

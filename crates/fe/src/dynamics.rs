@@ -41,9 +41,18 @@
 //! over their tributary lengths, like weight and mass. Its velocity
 //! derivative enters `C`; its dependence on the orientation is left out of the Jacobian.
 //!
-//! **Seabed.** Each node's trial is evaluated from its committed history (pure); the histories are
-//! replaced by the trials' `next` only when the step converges. A failed attempt leaves the State
-//! untouched, and the step is retried with `Δt/2` (up to `max_cuts` times).
+//! **Seabed.** Each node's trial is evaluated from its committed history, its penetration rate and
+//! Δt (pure); the histories are replaced by the trials' `next` only when the step converges. A
+//! failed attempt leaves the State untouched, and the step is retried with `Δt/2` (up to `max_cuts`
+//! times). A step that fails after every cut leaves the State exactly as it was before the step
+//! (step-level revert).
+//!
+//! **Model, State, Workspace.** [`DynamicModel`] holds what the scene fixes (the line, its placement,
+//! the environment, the top motion and the solver settings) and is immutable; [`DynState`] is what a
+//! restart needs; [`DynWorkspace`] is scratch. The first-iteration reuse of the last factorisation is
+//! the one piece of the Workspace that changes converged bits; [`DynWorkspace::solver_memory`]
+//! exports it (the tangent values last factorised, and their Δt) so that a checkpoint can carry it and
+//! a restart continue bit for bit.
 //!
 //! **Convergence.** `‖G‖ ≤ tol·‖F_weight‖ + 10·ε·√(Σₑ (EAₑ(1 + U/L0ₑ))²)` on the free equations, U the
 //! largest displacement from the base (the second term is the rounding floor of the axial forces), or a relative residual below 1e-6 with a correction below
@@ -52,9 +61,11 @@
 use catena_seabed::law::SeabedHistory;
 use serde::{Deserialize, Serialize};
 
+use crate::assembly::{Assembler, LineResults, Placement};
+use crate::environment::Environment;
 use crate::model::LineModel;
+use crate::motion::TopMotion;
 use crate::sparse::SolveError;
-use crate::statics::{Placement, StaticWorkspace};
 
 /// The time integration scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -83,162 +94,20 @@ impl Scheme {
     }
 }
 
-/// Hydrodynamic coefficients and the current.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Hydro {
-    /// Sea water density, kg/m³.
-    pub water_density: f64,
-    /// Normal drag coefficient.
-    pub cd_normal: f64,
-    /// Axial drag coefficient (on the area πD per length).
-    pub cd_axial: f64,
-    /// Normal added-mass coefficient.
-    pub ca_normal: f64,
-    /// Current profile `(z, U_x)`, sorted by z (empty for none); linear in between, constant beyond.
-    pub current: Vec<(f64, f64)>,
-}
-
-impl Hydro {
-    /// The current speed (along +x) at height z, m/s.
-    pub fn current_at(&self, z: f64) -> f64 {
-        let c = &self.current;
-        match c.len() {
-            0 => 0.0,
-            1 => c[0].1,
-            _ => {
-                if z <= c[0].0 {
-                    return c[0].1;
-                }
-                for w in c.windows(2) {
-                    if z <= w[1].0 {
-                        let f = (z - w[0].0) / (w[1].0 - w[0].0);
-                        return w[0].1 + f * (w[1].1 - w[0].1);
-                    }
-                }
-                c[c.len() - 1].1
-            }
-        }
-    }
-}
-
-/// Prescribed motion of the top end, relative to its static position.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum TopMotion {
-    /// Constant velocities for successive durations `(duration s, vx m/s, vz m/s)`; still afterwards.
-    Staged(Vec<(f64, f64, f64)>),
-    /// `x = Ax·r(t)·sin(ωt + φ)`, `z = Az·r(t)·sin(ωt + φ)`, with the quintic ramp
-    /// `r = σ³(10 − 15σ + 6σ²)`, `σ = min(t/T_ramp, 1)` (no ramp if `T_ramp = 0`).
-    Harmonic {
-        /// Surge amplitude, m.
-        surge: f64,
-        /// Heave amplitude, m.
-        heave: f64,
-        /// Period, s.
-        period: f64,
-        /// Phase, rad.
-        phase: f64,
-        /// Ramp duration, s.
-        ramp: f64,
-    },
-    /// A time series `(t, dx, dz)`, linear in between (velocity piecewise constant, acceleration 0);
-    /// held at its ends.
-    Series(Vec<(f64, f64, f64)>),
-}
-
-/// Displacement, velocity and acceleration of a prescribed motion, `[x, z]` each.
-pub type Kinematics = ([f64; 2], [f64; 2], [f64; 2]);
-
-/// The quintic ramp and its first two time derivatives.
-pub fn quintic_ramp(t: f64, duration: f64) -> (f64, f64, f64) {
-    if duration <= 0.0 || t >= duration {
-        return (1.0, 0.0, 0.0);
-    }
-    if t <= 0.0 {
-        return (0.0, 0.0, 0.0);
-    }
-    let s = t / duration;
-    let r = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
-    let dr = 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration;
-    let ddr = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / (duration * duration);
-    (r, dr, ddr)
-}
-
-impl TopMotion {
-    /// The motion at time t.
-    pub fn at(&self, t: f64) -> Kinematics {
+impl std::fmt::Display for Scheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            TopMotion::Staged(stages) => {
-                let mut d = [0.0; 2];
-                let mut t0 = 0.0;
-                for &(dur, vx, vz) in stages {
-                    if t < t0 + dur {
-                        let tau = (t - t0).max(0.0);
-                        return ([d[0] + vx * tau, d[1] + vz * tau], [vx, vz], [0.0; 2]);
-                    }
-                    d[0] += vx * dur;
-                    d[1] += vz * dur;
-                    t0 += dur;
-                }
-                (d, [0.0; 2], [0.0; 2])
-            }
-            TopMotion::Harmonic {
-                surge,
-                heave,
-                period,
-                phase,
-                ramp,
-            } => {
-                let w = std::f64::consts::TAU / period;
-                let (r, dr, ddr) = quintic_ramp(t, *ramp);
-                let (s, c) = (w * t + phase).sin_cos();
-                let f = r * s;
-                let df = dr * s + r * w * c;
-                let ddf = ddr * s + 2.0 * dr * w * c - r * w * w * s;
-                (
-                    [surge * f, heave * f],
-                    [surge * df, heave * df],
-                    [surge * ddf, heave * ddf],
-                )
-            }
-            TopMotion::Series(pts) => {
-                if pts.is_empty() {
-                    return ([0.0; 2], [0.0; 2], [0.0; 2]);
-                }
-                if t <= pts[0].0 {
-                    return ([pts[0].1, pts[0].2], [0.0; 2], [0.0; 2]);
-                }
-                for w in pts.windows(2) {
-                    if t < w[1].0 {
-                        let h = w[1].0 - w[0].0;
-                        let f = (t - w[0].0) / h;
-                        let vx = (w[1].1 - w[0].1) / h;
-                        let vz = (w[1].2 - w[0].2) / h;
-                        return (
-                            [
-                                w[0].1 + f * (w[1].1 - w[0].1),
-                                w[0].2 + f * (w[1].2 - w[0].2),
-                            ],
-                            [vx, vz],
-                            [0.0; 2],
-                        );
-                    }
-                }
-                let l = pts[pts.len() - 1];
-                ([l.1, l.2], [0.0; 2], [0.0; 2])
-            }
+            Scheme::Hht { alpha } => write!(f, "HHT-α, α = {alpha}"),
+            Scheme::Newmark { beta, gamma } => write!(f, "Newmark, β = {beta}, γ = {gamma}"),
         }
     }
 }
 
-/// Settings of a dynamic run (part of the Model).
-#[derive(Debug, Clone, PartialEq)]
+/// Solver settings of a dynamic run.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DynamicSettings {
     /// The scheme.
     pub scheme: Scheme,
-    /// Hydrodynamics, if the scene has them.
-    pub hydro: Option<Hydro>,
-    /// Top-end motion, if any.
-    pub motion: Option<TopMotion>,
     /// Relative residual tolerance (on `‖F_weight‖`).
     pub tol: f64,
     /// Newton iterations per attempt.
@@ -247,8 +116,23 @@ pub struct DynamicSettings {
     pub max_cuts: u32,
 }
 
+/// The Model of a dynamic run: everything the scene and the statics fix, immutable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicModel {
+    /// The line (mesh, sections, supports, seabed, flexjoint).
+    pub line: LineModel,
+    /// The base configuration the displacements are measured from.
+    pub placement: Placement,
+    /// The environment (hydrodynamics).
+    pub environment: Environment,
+    /// The top end's prescribed motion, if any.
+    pub motion: Option<TopMotion>,
+    /// The solver settings.
+    pub settings: DynamicSettings,
+}
+
 /// Everything a restart needs.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct DynState {
     /// Time, s.
     pub t: f64,
@@ -264,6 +148,54 @@ pub struct DynState {
     pub f_prev: Vec<f64>,
     /// Each node's committed seabed history.
     pub history: Vec<SeabedHistory>,
+}
+
+impl DynState {
+    /// Checks that this State fits the Model (e.g. one read from a checkpoint): every array has
+    /// the Model's length, every number is finite, each history is of the Model's seabed law, and
+    /// `t ≥ 0`. The error says which field is wrong and how.
+    pub fn check_fits(&self, dm: &DynamicModel) -> Result<(), String> {
+        let n = dm.line.nodes();
+        for (name, v) in [
+            ("u", &self.u),
+            ("v", &self.v),
+            ("a", &self.a),
+            ("f_prev", &self.f_prev),
+        ] {
+            if v.len() != 3 * n {
+                return Err(format!(
+                    "state.{name} has {} entries, expected {} (3 per node, {n} nodes)",
+                    v.len(),
+                    3 * n
+                ));
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(format!("state.{name}[{i}] is not a finite number"));
+            }
+        }
+        if self.history.len() != n {
+            return Err(format!(
+                "state.history has {} entries, expected {n} (one per node)",
+                self.history.len()
+            ));
+        }
+        if let Some(sb) = &dm.line.seabed {
+            let want = std::mem::discriminant(&sb.seabed.untouched());
+            if let Some(i) = self
+                .history
+                .iter()
+                .position(|h| std::mem::discriminant(h) != want)
+            {
+                return Err(format!(
+                    "state.history[{i}] is the history of another seabed law than the scene's"
+                ));
+            }
+        }
+        if !(self.t.is_finite() && self.t >= 0.0) {
+            return Err(format!("state.t = {} is not a time >= 0 s", self.t));
+        }
+        Ok(())
+    }
 }
 
 /// Why a step failed.
@@ -283,6 +215,8 @@ pub enum StepError {
         dt: f64,
         /// Cuts made.
         cuts: u32,
+        /// Newton iterations in all the step's attempts.
+        iterations: usize,
         /// The last iteration.
         iteration: usize,
         /// Its relative residual.
@@ -310,24 +244,37 @@ pub struct StepInfo {
     pub substeps: usize,
 }
 
+/// The part of the Workspace that changes converged bits: the tangent factorised last and the Δt it
+/// was factorised for (the first Newton iteration of a step of the same Δt reuses it). A checkpoint
+/// carries it so that a restart continues bit for bit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SolverMemory {
+    /// The Δt of the factorised Jacobian, s.
+    pub dt: f64,
+    /// Its values, in the sparse pattern's order.
+    pub values: Vec<f64>,
+}
+
 /// Scratch for the dynamics (never saved).
 #[derive(Debug)]
 pub struct DynWorkspace {
-    /// The structural workspace (pattern, factorisation, element results).
-    pub st: StaticWorkspace,
+    /// The structural assembly (pattern, factorisation, element results).
+    pub asm: Assembler,
     /// Lumped mass per node: `[xx, xz, zz, rot]`.
     mass: Vec<[f64; 4]>,
     /// Non-inertial forces at the trial, 3 per node.
     pub f: Vec<f64>,
     /// The trial histories (committed on convergence).
     pub next: Vec<SeabedHistory>,
-    /// Seabed force (resistance plus buoyancy) per unit length at the trial, per node.
+    /// Seabed force (resistance, buoyancy and damping) per unit length at the trial, per node.
     pub seabed_force: Vec<f64>,
     g: Vec<f64>,
     dq: Vec<f64>,
     u: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
+    /// The State at the start of the step (restored if the step fails).
+    saved: DynState,
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
     /// of the next step of the same Δt).
     factored_dt: Option<f64>,
@@ -335,53 +282,84 @@ pub struct DynWorkspace {
 
 impl DynWorkspace {
     /// Builds the workspace (pattern and symbolic factorisation once).
-    pub fn new(model: &LineModel) -> Result<Self, SolveError> {
-        let n = model.nodes();
+    pub fn new(line: &LineModel) -> Result<Self, SolveError> {
+        let n = line.nodes();
+        let untouched = line
+            .seabed
+            .as_ref()
+            .map_or(SeabedHistory::Linear(Default::default()), |s| {
+                s.seabed.untouched()
+            });
         Ok(Self {
-            st: StaticWorkspace::new(model)?,
+            asm: Assembler::new(line)?,
             mass: vec![[0.0; 4]; n],
             f: vec![0.0; 3 * n],
-            next: vec![
-                model
-                    .seabed
-                    .as_ref()
-                    .map_or(SeabedHistory::Linear(Default::default()), |s| s
-                        .seabed
-                        .untouched());
-                n
-            ],
+            next: vec![untouched; n],
             seabed_force: vec![0.0; n],
-            g: vec![0.0; model.n_eq],
-            dq: vec![0.0; model.n_eq],
+            g: vec![0.0; line.n_eq],
+            dq: vec![0.0; line.n_eq],
             u: vec![0.0; 3 * n],
             v: vec![0.0; 3 * n],
             a: vec![0.0; 3 * n],
+            saved: DynState {
+                t: 0.0,
+                step: 0,
+                u: vec![0.0; 3 * n],
+                v: vec![0.0; 3 * n],
+                a: vec![0.0; 3 * n],
+                f_prev: vec![0.0; 3 * n],
+                history: vec![untouched; n],
+            },
             factored_dt: None,
         })
     }
-}
 
-impl DynWorkspace {
     /// Drops the factorisation kept for reuse: the next step starts with a full Newton iteration.
-    /// Done at checkpoints, so that a run restored from one (whose new workspace has nothing to
-    /// reuse) continues bit-for-bit like the uninterrupted run.
     pub fn forget_factorisation(&mut self) {
         self.factored_dt = None;
+    }
+
+    /// The factorisation kept for reuse, as data (see [`SolverMemory`]).
+    pub fn solver_memory(&self) -> Option<SolverMemory> {
+        self.factored_dt.map(|dt| SolverMemory {
+            dt,
+            values: self.asm.factored_values().to_vec(),
+        })
+    }
+
+    /// Restores a [`SolverMemory`]: refactorises its values, so the next step reuses exactly the
+    /// factorisation the run that exported it would have reused.
+    pub fn restore_solver_memory(&mut self, m: &SolverMemory) -> Result<(), String> {
+        if m.values.len() != self.asm.pattern_len() {
+            return Err(format!(
+                "solver memory has {} values, expected {} (the tangent's pattern)",
+                m.values.len(),
+                self.asm.pattern_len()
+            ));
+        }
+        if !(m.dt.is_finite() && m.dt > 0.0) || m.values.iter().any(|x| !x.is_finite()) {
+            return Err("solver memory holds a non-finite value".into());
+        }
+        self.asm
+            .refactor_from(&m.values)
+            .map_err(|e| e.to_string())?;
+        self.factored_dt = Some(m.dt);
+        Ok(())
     }
 }
 
 /// The penetration of node `i` and its rate (positive down).
 #[inline]
 fn penetration(
-    model: &LineModel,
+    line: &LineModel,
     pl: &Placement,
     u: &[f64],
     v: &[f64],
     i: usize,
 ) -> Option<(f64, f64)> {
-    model.seabed.as_ref().map(|sb| {
+    line.seabed.as_ref().map(|sb| {
         (
-            sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]),
+            sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * line.node_od[i]),
             -v[3 * i + 1],
         )
     })
@@ -390,13 +368,8 @@ fn penetration(
 /// The dynamic State at the end of the statics: at rest, each node in contact starting in Initial
 /// Penetration at its static penetration (the spec's decision). The initial acceleration is the
 /// lumped `a0 = −M⁻¹F(u, 0)` on the free dofs (zero from a static equilibrium).
-pub fn initial_state(
-    model: &LineModel,
-    pl: &Placement,
-    hydro: Option<&Hydro>,
-    u: &[f64],
-    ws: &mut DynWorkspace,
-) -> DynState {
+pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> DynState {
+    let (model, pl) = (&dm.line, &dm.placement);
     let n = model.nodes();
     let v = vec![0.0; 3 * n];
     let history: Vec<SeabedHistory> = (0..n)
@@ -418,22 +391,12 @@ pub fn initial_state(
         f_prev: vec![0.0; 3 * n],
         history,
     };
-    forces(
-        model,
-        pl,
-        hydro,
-        &state.u.clone(),
-        &state.v.clone(),
-        &state.history,
-        ws,
-        false,
-        0.0,
-        0.0,
-        0.0,
-    );
+    ws.u.copy_from_slice(&state.u);
+    ws.v.copy_from_slice(&state.v);
+    forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
     ws.next.copy_from_slice(&state.history);
-    lump_mass(model, pl, hydro, &state.u, &mut ws.mass);
+    lump_mass(dm, &state.u, &mut ws.mass);
     for i in 0..n {
         let m = ws.mass[i];
         let (fx, fz, fr) = (ws.f[3 * i], ws.f[3 * i + 1], ws.f[3 * i + 2]);
@@ -455,16 +418,12 @@ pub fn initial_state(
     state
 }
 
+/// Assembles the non-inertial forces `F(u, v)` at the workspace's iterate `(ws.u, ws.v)` into
+/// `ws.f` (and the trial histories into `ws.next`); with `with_k`, also `(1+α)(K + c_v·C)` into the
+/// tangent (`k_scale = 1 + α`). `dt` is the step the seabed laws see.
 #[allow(clippy::needless_range_loop)]
-/// Assembles the non-inertial forces `F(u, v)` into `ws.f` (and the trial histories into `ws.next`);
-/// with `with_k`, also `(1+α)(K + c_v·C)` into the tangent (scaled by `k_scale = 1 + α`).
-#[allow(clippy::too_many_arguments)]
-fn forces(
-    model: &LineModel,
-    pl: &Placement,
-    hydro: Option<&Hydro>,
-    u: &[f64],
-    v: &[f64],
+fn forces_at_iterate(
+    dm: &DynamicModel,
     committed: &[SeabedHistory],
     ws: &mut DynWorkspace,
     with_k: bool,
@@ -472,9 +431,12 @@ fn forces(
     c_v: f64,
     dt: f64,
 ) {
-    ws.st.assemble_structure(model, pl, u, with_k);
+    let (model, pl) = (&dm.line, &dm.placement);
+    let (u, v) = (&ws.u, &ws.v);
+    let asm = &mut ws.asm;
+    asm.assemble_structure(model, pl, u, with_k);
     if with_k {
-        ws.st.scale_tangent(k_scale);
+        asm.scale_tangent(k_scale);
     }
     let n = model.nodes();
     if let Some(sb) = &model.seabed {
@@ -487,62 +449,43 @@ fn forces(
             let mut k = t.tangent;
             let mut c = t.damping_coefficient;
             ws.seabed_force[i] = up;
-            ws.st.residual[3 * i + 1] -= l * up;
+            asm.residual[3 * i + 1] -= l * up;
             if with_k && (k != 0.0 || c != 0.0) {
                 // z_pen = const − z, ż_pen = −v_z: d(−L·F)/dz = L·F', d(−L·F)/dv_z = L·c.
                 k *= l;
                 c *= l;
-                ws.st
-                    .add_dof_tangent(model, 3 * i + 1, k_scale * (k + c_v * c));
+                asm.add_dof_tangent(model, 3 * i + 1, k_scale * (k + c_v * c));
             }
         }
     }
-    if let Some(h) = hydro {
-        let kn0 = 0.5 * h.water_density * h.cd_normal;
-        let ka0 = 0.5 * h.water_density * h.cd_axial * std::f64::consts::PI;
+    if let Some(h) = &dm.environment.hydro {
         for i in 0..n {
-            let l = model.tributary[i];
-            let d = model.node_od[i];
             let th = pl.base[3 * i + 2] + u[3 * i + 2];
             let (ty, tx) = th.sin_cos();
             let z = pl.base[3 * i + 1] + u[3 * i + 1];
-            let rx = h.current_at(z) - v[3 * i];
-            let rz = -v[3 * i + 1];
-            let s = rx * tx + rz * ty;
-            let (nx, nz) = (rx - s * tx, rz - s * ty);
-            let vn = (nx * nx + nz * nz).sqrt();
-            let kn = kn0 * d * l;
-            let ka = ka0 * d * l;
-            let fx = kn * vn * nx + ka * s.abs() * s * tx;
-            let fz = kn * vn * nz + ka * s.abs() * s * ty;
-            ws.st.residual[3 * i] -= fx;
-            ws.st.residual[3 * i + 1] -= fz;
+            let d = h.drag(
+                model.node_od[i],
+                model.tributary[i],
+                (tx, ty),
+                z,
+                (v[3 * i], v[3 * i + 1]),
+                with_k,
+            );
+            asm.residual[3 * i] -= d.force[0];
+            asm.residual[3 * i + 1] -= d.force[1];
             if with_k {
-                // C = kn (|v_n| P + v_n v_nᵀ/|v_n|) + 2 ka |s| t tᵀ, P = I − t tᵀ.
-                let mut cxx = 2.0 * ka * s.abs() * tx * tx;
-                let mut cxz = 2.0 * ka * s.abs() * tx * ty;
-                let mut czz = 2.0 * ka * s.abs() * ty * ty;
-                if vn > 0.0 {
-                    cxx += kn * (vn * (1.0 - tx * tx) + nx * nx / vn);
-                    cxz += kn * (-vn * tx * ty + nx * nz / vn);
-                    czz += kn * (vn * (1.0 - ty * ty) + nz * nz / vn);
-                }
                 let f = k_scale * c_v;
-                ws.st.add_node_block(model, i, f * cxx, f * cxz, f * czz);
+                let [cxx, cxz, czz] = d.damping;
+                asm.add_node_block(model, i, f * cxx, f * cxz, f * czz);
             }
         }
     }
-    ws.f.copy_from_slice(&ws.st.residual);
+    ws.f.copy_from_slice(&asm.residual);
 }
 
 /// Lumped mass at the orientation `u` (added mass normal to the tangent there).
-fn lump_mass(
-    model: &LineModel,
-    pl: &Placement,
-    hydro: Option<&Hydro>,
-    u: &[f64],
-    mass: &mut [[f64; 4]],
-) {
+fn lump_mass(dm: &DynamicModel, u: &[f64], mass: &mut [[f64; 4]]) {
+    let (model, pl) = (&dm.line, &dm.placement);
     for m in mass.iter_mut() {
         *m = [0.0; 4];
     }
@@ -554,11 +497,9 @@ fn lump_mass(
             mass[i][3] += half * el.od * el.od / 8.0;
         }
     }
-    if let Some(h) = hydro {
+    if let Some(h) = &dm.environment.hydro {
         for (i, m) in mass.iter_mut().enumerate() {
-            let d = model.node_od[i];
-            let ma = h.ca_normal * h.water_density * std::f64::consts::PI * d * d / 4.0
-                * model.tributary[i];
+            let ma = h.added_mass(model.node_od[i], model.tributary[i]);
             let th = pl.base[3 * i + 2] + u[3 * i + 2];
             let (ty, tx) = th.sin_cos();
             m[0] += ma * (1.0 - tx * tx);
@@ -572,32 +513,29 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
 /// One attempt at a step of `dt` from `state`. On success the State is advanced (histories
 /// committed); on failure it is untouched and the error carries the last iterate's residual.
+#[allow(clippy::needless_range_loop)]
 fn attempt(
-    model: &LineModel,
-    pl: &Placement,
-    set: &DynamicSettings,
+    dm: &DynamicModel,
     state: &mut DynState,
     ws: &mut DynWorkspace,
     dt: f64,
-    refn: f64,
-    noise: f64,
+    (refn, noise): (f64, f64),
     careful: bool,
     iterations: &mut usize,
 ) -> Result<(), Failed> {
+    let (model, set) = (&dm.line, &dm.settings);
     let (alpha, beta, gamma) = set.scheme.coefficients();
-    let hydro = set.hydro.as_ref();
     let t1 = state.t + dt;
     let n = model.nodes();
-    lump_mass(model, pl, hydro, &state.u, &mut ws.mass);
+    lump_mass(dm, &state.u, &mut ws.mass);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
     for g in 0..3 * n {
         ws.u[g] = state.u[g] + dt * state.v[g] + c_pred * state.a[g];
     }
-    let prescribed = set.motion.as_ref().map(|m| m.at(t1));
+    let prescribed = dm.motion.as_ref().map(|m| m.at(t1));
     let c_m = 1.0 / (beta * dt * dt);
     let c_v = gamma / (beta * dt);
     let mut last = (0, f64::INFINITY, 0);
@@ -626,17 +564,7 @@ fn attempt(
         // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
         // step instead of two; later iterations are full Newton.
         let reuse = it == 0 && ws.factored_dt == Some(dt);
-        forces_at_iterate(
-            model,
-            pl,
-            hydro,
-            &state.history,
-            ws,
-            !reuse,
-            1.0 + alpha,
-            c_v,
-            dt,
-        );
+        forces_at_iterate(dm, &state.history, ws, !reuse, 1.0 + alpha, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n on the free equations.
         for i in 0..n {
             let m = ws.mass[i];
@@ -649,9 +577,9 @@ fn attempt(
                 }
             }
             if !reuse {
-                ws.st
+                ws.asm
                     .add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
-                ws.st.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+                ws.asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
             }
         }
         let r = norm(&ws.g) / refn;
@@ -685,36 +613,24 @@ fn attempt(
         }
         *iterations += 1;
         if !reuse {
-            if ws.st.factor_tangent().is_err() {
+            if ws.asm.factor_tangent().is_err() {
                 // `advance` drops the factorisation of every failed attempt.
                 break;
             }
             ws.factored_dt = Some(dt);
         }
         ws.dq.copy_from_slice(&ws.g);
-        let mut dq = std::mem::take(&mut ws.dq);
-        ws.st.solve_tangent(&mut dq);
-        let step = dq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        ws.asm.solve_tangent(&mut ws.dq);
+        let step = ws.dq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (g, e) in model.equation.iter().enumerate() {
             if let Some(i) = e {
-                ws.u[g] -= dq[*i];
+                ws.u[g] -= ws.dq[*i];
             }
         }
-        ws.dq = dq;
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             newmark_kinematics(model, state, ws, dt, beta, gamma);
-            forces_at_iterate(
-                model,
-                pl,
-                hydro,
-                &state.history,
-                ws,
-                false,
-                1.0 + alpha,
-                c_v,
-                dt,
-            );
+            forces_at_iterate(dm, &state.history, ws, false, 1.0 + alpha, c_v, dt);
             commit(state, ws, t1);
             return Ok(());
         }
@@ -752,27 +668,6 @@ pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
             .sqrt()
 }
 
-/// [`forces`] at the workspace's current iterate `(ws.u, ws.v)`.
-#[allow(clippy::too_many_arguments)]
-fn forces_at_iterate(
-    model: &LineModel,
-    pl: &Placement,
-    hydro: Option<&Hydro>,
-    committed: &[SeabedHistory],
-    ws: &mut DynWorkspace,
-    with_k: bool,
-    k_scale: f64,
-    c_v: f64,
-    dt: f64,
-) {
-    let (u, v) = (std::mem::take(&mut ws.u), std::mem::take(&mut ws.v));
-    forces(
-        model, pl, hydro, &u, &v, committed, ws, with_k, k_scale, c_v, dt,
-    );
-    ws.u = u;
-    ws.v = v;
-}
-
 /// `a_{n+1}` and `v_{n+1}` on the free dofs from the iterate `u_{n+1}` (the Newmark relations).
 fn newmark_kinematics(
     model: &LineModel,
@@ -802,36 +697,46 @@ fn commit(state: &mut DynState, ws: &DynWorkspace, t1: f64) {
     state.step += 1;
 }
 
+/// Copies `from` into `to` without allocating (both have the same lengths).
+fn copy_state(to: &mut DynState, from: &DynState) {
+    to.t = from.t;
+    to.step = from.step;
+    to.u.copy_from_slice(&from.u);
+    to.v.copy_from_slice(&from.v);
+    to.a.copy_from_slice(&from.a);
+    to.f_prev.copy_from_slice(&from.f_prev);
+    to.history.copy_from_slice(&from.history);
+}
+
 /// Advances the State by `dt`. When Newton diverges, the attempt is repeated once from the
-/// constant-velocity predictor, then the step is cut (halving, up to `max_cuts` times),
-/// and sub-stepping back up to the full `dt`. On failure the State is left at the last converged
-/// sub-step.
+/// constant-velocity predictor, then the step is cut (halving, up to `max_cuts` times), and
+/// sub-stepping back up to the full `dt`. On success the State has advanced by one step (its
+/// `step` counts the sub-steps); on failure it is exactly as it was before the call.
 pub fn advance(
-    model: &LineModel,
-    pl: &Placement,
-    set: &DynamicSettings,
+    dm: &DynamicModel,
     state: &mut DynState,
     ws: &mut DynWorkspace,
     dt: f64,
 ) -> Result<StepInfo, StepError> {
+    let model = &dm.line;
     let refn = crate::statics::residual_reference(model);
     let noise = residual_floor(model, &state.u) / refn;
     let target = state.t + dt;
+    let mut saved = std::mem::take(&mut ws.saved);
+    copy_state(&mut saved, state);
     let mut info = StepInfo::default();
     let mut h = dt;
     let mut level = 0u32;
     let mut careful = false;
+    let mut outcome = Ok(());
     while target - state.t > 1e-9 * dt {
         let h_try = h.min(target - state.t);
         match attempt(
-            model,
-            pl,
-            set,
+            dm,
             state,
             ws,
             h_try,
-            refn,
-            noise,
+            (refn, noise),
             careful,
             &mut info.iterations,
         ) {
@@ -855,17 +760,19 @@ pub fn advance(
                 ..
             }) => {
                 ws.forget_factorisation();
-                if level >= set.max_cuts {
-                    return Err(StepError::NotConverged {
+                if level >= dm.settings.max_cuts {
+                    outcome = Err(StepError::NotConverged {
                         t: state.t + h_try,
-                        step: state.step + 1,
+                        step: saved.step + 1,
                         dt: h_try,
                         cuts: info.cuts,
+                        iterations: info.iterations,
                         iteration,
                         residual,
                         node,
                         arc: model.arc[node],
                     });
+                    break;
                 }
                 level += 1;
                 info.cuts += 1;
@@ -873,12 +780,17 @@ pub fn advance(
             }
         }
     }
-    state.t = target;
-    Ok(info)
+    if outcome.is_err() {
+        copy_state(state, &saved);
+    } else {
+        state.t = target;
+    }
+    ws.saved = saved;
+    outcome.map(|()| info)
 }
 
 /// HHT-α on one degree of freedom `m ü + k u = 0` (the same coefficients as [`advance`]): returns the
-/// displacement after `steps` steps. Used to check the scheme against cases.md §5.
+/// displacement after `steps` steps. Used to check the scheme's published numbers.
 pub fn sdof_free_vibration(
     scheme: Scheme,
     omega: f64,
@@ -903,67 +815,34 @@ pub fn sdof_free_vibration(
     u
 }
 
-/// Nodal results of a converged dynamic state (preallocated; refilled without allocating).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Snapshot {
-    /// x, m.
-    pub x: Vec<f64>,
-    /// z, m.
-    pub z: Vec<f64>,
-    /// Effective tension, N (end nodes: the support reaction's magnitude, inertia included).
-    pub tension: Vec<f64>,
-    /// Bending moment, N·m (negative = sag).
-    pub moment: Vec<f64>,
-    /// Invert penetration, m (positive down).
-    pub penetration: Vec<f64>,
-    /// Seabed force per unit length (resistance, buoyancy and damping), N/m.
-    pub seabed_force: Vec<f64>,
-    /// Contact mode code (0 not in contact, 1 initial penetration, 2 uplift, 3 repenetration).
-    pub mode: Vec<u8>,
+/// Re-evaluates the forces and the lumped mass at a State (e.g. one restored from a checkpoint) so
+/// that [`results`] can be taken from it. Commits nothing and leaves the reused factorisation alone.
+pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
+    ws.u.copy_from_slice(&state.u);
+    ws.v.copy_from_slice(&state.v);
+    forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
+    lump_mass(dm, &state.u, &mut ws.mass);
 }
 
-impl Snapshot {
-    /// A snapshot for `n` nodes.
-    pub fn new(n: usize) -> Self {
-        Self {
-            x: vec![0.0; n],
-            z: vec![0.0; n],
-            tension: vec![0.0; n],
-            moment: vec![0.0; n],
-            penetration: vec![0.0; n],
-            seabed_force: vec![0.0; n],
-            mode: vec![0; n],
-        }
-    }
-}
-
-/// Fills `out` from the State just committed by [`advance`] (the workspace still holds the
-/// converged evaluation).
-pub fn snapshot(
-    model: &LineModel,
-    pl: &Placement,
-    state: &DynState,
-    ws: &DynWorkspace,
-    out: &mut Snapshot,
-) {
-    let n = model.nodes();
-    for i in 0..n {
-        out.x[i] = pl.base[3 * i] + state.u[3 * i];
-        out.z[i] = pl.base[3 * i + 1] + state.u[3 * i + 1];
-        (out.tension[i], out.moment[i]) = ws.st.nodal_tension_moment(i);
-        out.penetration[i] = penetration(model, pl, &state.u, &state.v, i).map_or(0.0, |p| p.0);
-        out.seabed_force[i] = if model.seabed.is_some() {
-            ws.seabed_force[i]
-        } else {
-            0.0
-        };
-        out.mode[i] = state.history[i].mode().code();
-    }
-    for i in [0, n - 1] {
-        let m = ws.mass[i];
-        let (ax, az) = (state.a[3 * i], state.a[3 * i + 1]);
-        let rx = m[0] * ax + m[1] * az + state.f_prev[3 * i];
-        let rz = m[1] * ax + m[2] * az + state.f_prev[3 * i + 1];
-        out.tension[i] = (rx * rx + rz * rz).sqrt();
-    }
+/// Fills `out` with the nodal results of the State just committed by [`advance`] (the workspace
+/// still holds the converged evaluation); the end nodes' tension is the reaction `M a + F`.
+/// Allocates nothing.
+pub fn results(dm: &DynamicModel, state: &DynState, ws: &DynWorkspace, out: &mut LineResults) {
+    let mass = &ws.mass;
+    ws.asm.fill_results(
+        &dm.line,
+        &dm.placement,
+        &state.u,
+        |i| ws.seabed_force[i],
+        |i| state.history[i].mode().code(),
+        |i| {
+            let m = mass[i];
+            let (ax, az) = (state.a[3 * i], state.a[3 * i + 1]);
+            (
+                m[0] * ax + m[1] * az + state.f_prev[3 * i],
+                m[1] * ax + m[2] * az + state.f_prev[3 * i + 1],
+            )
+        },
+        out,
+    );
 }

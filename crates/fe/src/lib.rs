@@ -1,15 +1,25 @@
-//! Finite elements for catena: the 2D corotational beam, sparse symmetric solves, and the static
-//! (later dynamic) solvers for a line in contact with the seabed.
+//! Finite elements for catena: the 2D corotational beam, sparse symmetric solves, and the static and
+//! dynamic solvers for a line in contact with the seabed.
 //!
 //! - [`beam`]: the corotational Euler–Bernoulli element kernel (pure);
 //! - [`sparse`]: the symmetric sparse pattern and faer's LDLᵀ with one symbolic factorisation per run;
-//! - [`model`]: the Model (mesh, sections, loads, supports, seabed), immutable once built;
+//! - [`model`]: the line Model (mesh, sections, loads, supports, seabed, flexjoint), immutable once
+//!   built;
+//! - [`assembly`]: the structural residual and tangent that statics and dynamics share, and the
+//!   nodal results ([`assembly::LineResults`]);
+//! - [`environment`]: the sea (hydrodynamics, current) and the loads it makes on the line;
+//! - [`motion`]: prescribed motion of the top end;
+//! - [`statics`]: the static Newton solve from a catenary seed;
+//! - [`dynamics`]: HHT-α/Newmark time stepping on a [`dynamics::DynamicModel`];
 //! - [`analytical`]: closed-form solutions (catenaries, the touchdown boundary layer, the elastica),
 //!   used to seed solves and to test them.
 
 pub mod analytical;
+pub mod assembly;
 pub mod beam;
 pub mod dynamics;
+pub mod environment;
 pub mod model;
+pub mod motion;
 pub mod sparse;
 pub mod statics;

@@ -90,8 +90,8 @@ pub struct LineSpec {
     pub anchor: Support,
     /// The seabed, if any.
     pub seabed: Option<SeabedContact>,
-    /// A flexjoint at the top, if any: `(stiffness, neutral angle)`; the neutral angle may be set
-    /// later by [`LineModel::set_flexjoint_neutral`].
+    /// A flexjoint at the top, if any: `(stiffness, neutral angle)` (see
+    /// [`LineModel::with_flexjoint_neutral`] for a Model with another neutral angle).
     pub flexjoint: Option<(f64, f64)>,
 }
 
@@ -232,11 +232,13 @@ impl LineModel {
         self.arc.last().copied().unwrap_or(0.0)
     }
 
-    /// Sets the flexjoint's neutral angle (e.g. to the static top angle, for zero static moment).
-    pub fn set_flexjoint_neutral(&mut self, neutral: f64) {
+    /// The same Model with the flexjoint's neutral angle set to `neutral` (rad; e.g. the static top
+    /// angle, for zero static moment). A Model is immutable once built: this makes a new one.
+    pub fn with_flexjoint_neutral(mut self, neutral: f64) -> Self {
         if let Some(fj) = &mut self.flexjoint {
             fj.neutral = neutral;
         }
+        self
     }
 
     /// The penetration of node `i`'s invert below the mudline at height `z` (positive down), or

@@ -28,9 +28,10 @@
 use std::time::Instant;
 
 use crate::analytical::{CatenaryError, FreeCatenary, TouchdownCatenary};
-use crate::beam::corotational_beam_chord;
+use crate::assembly::Assembler;
+pub use crate::assembly::{LineResults, Placement};
 use crate::model::LineModel;
-use crate::sparse::{LdltSolver, SolveError, SparseSym};
+use crate::sparse::SolveError;
 
 /// Options of the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,54 +107,13 @@ pub enum StaticError {
     Seed(#[from] CatenaryError),
 }
 
-/// A fixed base configuration `q_b` (3 values per node) and its element chords, precomputed once.
-/// The unknowns are displacements `u` from it: `q = q_b + u`. Element chords are then
-/// `chord_b + (u_2 − u_1)`, resolved to the precision of `u` rather than of coordinates of order
-/// 1000 m (which would limit equilibrium to about 1e-3 N in a 0.5 m element of EA = 3.4 GN).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Placement {
-    /// The base configuration, 3 per node.
-    pub base: Vec<f64>,
-    /// `(x_{e+1} − x_e, z_{e+1} − z_e)` of the base, per element.
-    pub chords: Vec<[f64; 2]>,
-}
-
-impl Placement {
-    /// The placement of a configuration `q`.
-    pub fn new(q: &[f64]) -> Self {
-        let n = q.len() / 3;
-        let chords = (0..n.saturating_sub(1))
-            .map(|e| [q[3 * e + 3] - q[3 * e], q[3 * e + 4] - q[3 * e + 1]])
-            .collect();
-        Self {
-            base: q.to_vec(),
-            chords,
-        }
-    }
-
-    /// Absolute values `q = q_b + u`.
-    pub fn absolute(&self, u: &[f64]) -> Vec<f64> {
-        self.base.iter().zip(u).map(|(b, d)| b + d).collect()
-    }
-}
-
-/// Scratch for the static solve: the sparse pattern, the factorisation and vectors. Never saved;
-/// rebuilt from the Model.
+/// Scratch for the static solve: the structural assembly (pattern, factorisation) and vectors.
+/// Never saved; rebuilt from the Model.
 #[derive(Debug)]
 pub struct StaticWorkspace {
-    /// The tangent (free equations), upper triangle.
-    pub k: SparseSym,
-    solver: LdltSolver,
-    /// For element `e`, the value slot of local pair `(a, b)` (`usize::MAX` if not stored).
-    elem_slots: Vec<[usize; 36]>,
-    /// The diagonal slot of each equation.
-    diag_slots: Vec<usize>,
-    /// Global residual `R(q)`, 3 per node.
-    pub residual: Vec<f64>,
-    /// Element axial forces, N.
-    pub axial: Vec<f64>,
-    /// Element internal end moments `(M(0), M(1))`, N·m.
-    pub moments: Vec<(f64, f64)>,
+    /// The structural assembly; after [`StaticWorkspace::assemble`] its residual includes the
+    /// seabed.
+    pub asm: Assembler,
     g: Vec<f64>,
     g0: Vec<f64>,
     dq: Vec<f64>,
@@ -161,49 +121,12 @@ pub struct StaticWorkspace {
     q_conv: Vec<f64>,
 }
 
-const NONE: usize = usize::MAX;
-
 impl StaticWorkspace {
     /// Builds the pattern and the symbolic factorisation for the Model.
     pub fn new(model: &LineModel) -> Result<Self, SolveError> {
-        let ne = model.elements.len();
-        let eq = |g: usize| model.equation[g];
-        let mut pairs = Vec::with_capacity(ne * 36);
-        for e in 0..ne {
-            for a in 0..6 {
-                for b in 0..6 {
-                    if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
-                        pairs.push((i, j));
-                    }
-                }
-            }
-        }
-        let k = SparseSym::from_couplings(model.n_eq, pairs);
-        let mut elem_slots = vec![[NONE; 36]; ne];
-        for (e, slots) in elem_slots.iter_mut().enumerate() {
-            for a in 0..6 {
-                for b in 0..6 {
-                    if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
-                        if i <= j {
-                            slots[a * 6 + b] = k.slot(i, j).unwrap_or(NONE);
-                        }
-                    }
-                }
-            }
-        }
-        let diag_slots = (0..model.n_eq)
-            .map(|i| k.slot(i, i).unwrap_or(NONE))
-            .collect();
-        let solver = LdltSolver::with_ordering(&k, true)?;
         let n3 = 3 * model.nodes();
         Ok(Self {
-            k,
-            solver,
-            elem_slots,
-            diag_slots,
-            residual: vec![0.0; n3],
-            axial: vec![0.0; ne],
-            moments: vec![(0.0, 0.0); ne],
+            asm: Assembler::new(model)?,
             g: vec![0.0; model.n_eq],
             g0: vec![0.0; model.n_eq],
             dq: vec![0.0; model.n_eq],
@@ -212,11 +135,10 @@ impl StaticWorkspace {
         })
     }
 
-    /// Assembles the global residual `R(q)` into [`StaticWorkspace::residual`] and, if `with_k`, the
-    /// tangent into [`StaticWorkspace::k`]. The seabed acts through its backbone (initial
-    /// penetration only). Allocates nothing.
+    /// Assembles the global residual `R(q)` into the assembler's residual and, if `with_k`, the
+    /// tangent. The seabed acts through its backbone (initial penetration only). Allocates nothing.
     pub fn assemble(&mut self, model: &LineModel, pl: &Placement, u: &[f64], with_k: bool) {
-        self.assemble_structure(model, pl, u, with_k);
+        self.asm.assemble_structure(model, pl, u, with_k);
         let q = &pl.base;
         if let Some(sb) = &model.seabed {
             for i in 0..model.nodes() {
@@ -226,137 +148,11 @@ impl StaticWorkspace {
                 }
                 let t = sb.seabed.backbone(z_pen);
                 let l = model.tributary[i];
-                self.residual[3 * i + 1] -= l * t.total();
+                self.asm.residual[3 * i + 1] -= l * t.total();
                 if with_k {
                     // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1.
-                    self.add_dof_tangent(model, 3 * i + 1, l * t.tangent);
+                    self.asm.add_dof_tangent(model, 3 * i + 1, l * t.tangent);
                 }
-            }
-        }
-    }
-
-    /// Adds `v` to the tangent's diagonal at global dof `g` (nothing if `g` is prescribed).
-    #[inline]
-    pub fn add_dof_tangent(&mut self, model: &LineModel, g: usize, v: f64) {
-        if let Some(eq) = model.equation[g] {
-            self.k.values[self.diag_slots[eq]] += v;
-        }
-    }
-
-    /// Adds a symmetric 2×2 block `[[xx, xz], [xz, zz]]` to the tangent at node `i`'s translations.
-    #[inline]
-    pub fn add_node_block(&mut self, model: &LineModel, i: usize, xx: f64, xz: f64, zz: f64) {
-        let (ex, ez) = (model.equation[3 * i], model.equation[3 * i + 1]);
-        if let Some(a) = ex {
-            self.k.values[self.diag_slots[a]] += xx;
-        }
-        if let Some(b) = ez {
-            self.k.values[self.diag_slots[b]] += zz;
-        }
-        if let (Some(a), Some(b)) = (ex, ez) {
-            if let Some(s) = self.k.slot(a, b) {
-                self.k.values[s] += xz;
-            }
-        }
-    }
-
-    /// Multiplies every assembled tangent value by `f`.
-    pub fn scale_tangent(&mut self, f: f64) {
-        for v in &mut self.k.values {
-            *v *= f;
-        }
-    }
-
-    /// The structural part of the residual and tangent: elements, submerged weight and flexjoint
-    /// (no seabed). Allocates nothing.
-    pub fn assemble_structure(
-        &mut self,
-        model: &LineModel,
-        pl: &Placement,
-        u: &[f64],
-        with_k: bool,
-    ) {
-        self.residual.fill(0.0);
-        if with_k {
-            self.k.clear();
-        }
-        let q = &pl.base;
-        for (e, el) in model.elements.iter().enumerate() {
-            let b = 3 * e;
-            let [cx, cz] = pl.chords[e];
-            let r = corotational_beam_chord(
-                cx + (u[b + 3] - u[b]),
-                cz + (u[b + 4] - u[b + 1]),
-                q[b + 2] + u[b + 2],
-                q[b + 5] + u[b + 5],
-                el.l0,
-                &el.section,
-                with_k,
-            );
-            for a in 0..6 {
-                self.residual[b + a] += r.force[a];
-            }
-            self.axial[e] = r.axial;
-            self.moments[e] = (r.moment1, r.moment2);
-            if with_k {
-                let slots = &self.elem_slots[e];
-                for a in 0..6 {
-                    for c in 0..6 {
-                        let s = slots[a * 6 + c];
-                        if s != NONE {
-                            self.k.values[s] += r.stiffness[a][c];
-                        }
-                    }
-                }
-            }
-        }
-        for (g, f) in model.dead_load.iter().enumerate() {
-            self.residual[g] -= f;
-        }
-        if let Some(fj) = &model.flexjoint {
-            let g = 3 * fj.node + 2;
-            self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral);
-            if with_k {
-                if let Some(eq) = model.equation[g] {
-                    self.k.values[self.diag_slots[eq]] += fj.stiffness;
-                }
-            }
-        }
-    }
-
-    /// Tension and bending moment at node `i` from the last assembly: the means of the adjacent
-    /// elements' axial forces and of their internal moments at that node.
-    pub fn nodal_tension_moment(&self, i: usize) -> (f64, f64) {
-        let ne = self.axial.len();
-        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
-        if i > 0 {
-            t += self.axial[i - 1];
-            m += self.moments[i - 1].1;
-            c += 1.0;
-        }
-        if i < ne {
-            t += self.axial[i];
-            m += self.moments[i].0;
-            c += 1.0;
-        }
-        (t / c, m / c)
-    }
-
-    /// Numeric factorisation of the tangent last assembled.
-    pub fn factor_tangent(&mut self) -> Result<(), SolveError> {
-        self.solver.factor(&self.k)
-    }
-
-    /// Solves with the last factorisation, in place.
-    pub fn solve_tangent(&mut self, rhs: &mut [f64]) {
-        self.solver.solve_in_place(rhs);
-    }
-
-    /// Copies the residual's free equations into `out`.
-    pub fn gather(&self, model: &LineModel, out: &mut [f64]) {
-        for (g, e) in model.equation.iter().enumerate() {
-            if let Some(i) = e {
-                out[*i] = self.residual[g];
             }
         }
     }
@@ -410,7 +206,7 @@ pub fn solve(
     ws.assemble(model, pl, q, false);
     rep.assembly_seconds += t0.elapsed().as_secs_f64();
     let mut g0 = std::mem::take(&mut ws.g0);
-    ws.gather(model, &mut g0);
+    ws.asm.gather(model, &mut g0);
     ws.g0 = g0;
     rep.residual = norm(&ws.g0) / refn;
     if rep.residual <= opts.tol {
@@ -459,7 +255,7 @@ fn newton(
         ws.assemble(model, pl, q, true);
         rep.assembly_seconds += t.elapsed().as_secs_f64();
         let mut g = std::mem::take(&mut ws.g);
-        ws.gather(model, &mut g);
+        ws.asm.gather(model, &mut g);
         for (gi, g0) in g.iter_mut().zip(&ws.g0) {
             *gi -= shift * g0;
         }
@@ -476,9 +272,9 @@ fn newton(
         }
         rep.iterations += 1;
         let t = Instant::now();
-        ws.solver.factor(&ws.k)?;
+        ws.asm.factor_tangent()?;
         ws.dq.copy_from_slice(&g);
-        ws.solver.solve_in_place(&mut ws.dq);
+        ws.asm.solve_tangent(&mut ws.dq);
         rep.solve_seconds += t.elapsed().as_secs_f64();
         ws.g = g;
         let step = ws.dq.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -508,7 +304,7 @@ fn newton(
             ws.q_trial = qt;
             rep.assembly_seconds += t.elapsed().as_secs_f64();
             let mut g = std::mem::take(&mut ws.g);
-            ws.gather(model, &mut g);
+            ws.asm.gather(model, &mut g);
             let mut slope = 0.0;
             for ((gi, g0), d) in g.iter_mut().zip(&ws.g0).zip(&ws.dq) {
                 *gi -= shift * g0;
@@ -661,30 +457,9 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
     Ok(q)
 }
 
-/// Results along the line, one value per node (node 0 at the top).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct LineResults {
-    /// Arc length from the top, m.
-    pub arc: Vec<f64>,
-    /// x, m.
-    pub x: Vec<f64>,
-    /// z, m.
-    pub z: Vec<f64>,
-    /// Tangent angle θ, rad.
-    pub theta: Vec<f64>,
-    /// Effective tension, N (end nodes: the support reaction's magnitude).
-    pub tension: Vec<f64>,
-    /// Bending moment, N·m (negative = sag).
-    pub moment: Vec<f64>,
-    /// Invert penetration below the mudline, m (positive down, ≤ 0 clear; 0 without a seabed).
-    pub penetration: Vec<f64>,
-    /// Seabed force (resistance plus buoyancy) per unit length, N/m.
-    pub seabed_force: Vec<f64>,
-}
-
-/// Nodal results at `q`. Tension and moment at an interior node are the means of the two adjacent
-/// elements' values there; at a supported end node the tension is the reaction's magnitude.
-/// `seabed_force` evaluates `force_at(node, z_pen)`, the law in the analysis' mode.
+/// Nodal results at `u` (see [`Assembler::fill_results`]); at the ends the tension is the support
+/// reaction's magnitude. `seabed_force` evaluates `force_at(node, z_pen)` where the node
+/// penetrates, the law in the analysis' mode; the mode code is 1 (initial penetration) there.
 pub fn line_results(
     model: &LineModel,
     pl: &Placement,
@@ -693,30 +468,29 @@ pub fn line_results(
     force_at: impl Fn(usize, f64) -> f64,
 ) -> LineResults {
     ws.assemble(model, pl, u, false);
-    let q = pl.absolute(u);
-    let n = model.nodes();
-    let mut r = LineResults {
-        arc: model.arc.clone(),
-        x: (0..n).map(|i| q[3 * i]).collect(),
-        z: (0..n).map(|i| q[3 * i + 1]).collect(),
-        theta: (0..n).map(|i| q[3 * i + 2]).collect(),
-        tension: vec![0.0; n],
-        moment: vec![0.0; n],
-        penetration: vec![0.0; n],
-        seabed_force: vec![0.0; n],
+    let mut r = LineResults::new(model.nodes());
+    let pen = |i: usize| {
+        model
+            .penetration(i, pl.base[3 * i + 1] + u[3 * i + 1])
+            .unwrap_or(0.0)
     };
-    for i in 0..n {
-        (r.tension[i], r.moment[i]) = ws.nodal_tension_moment(i);
-        if let Some(p) = model.penetration(i, q[3 * i + 1]) {
-            r.penetration[i] = p;
-            r.seabed_force[i] = if p > 0.0 { force_at(i, p) } else { 0.0 };
-        }
-    }
-    for i in [0, n - 1] {
-        let rx = ws.residual[3 * i];
-        let rz = ws.residual[3 * i + 1];
-        r.tension[i] = (rx * rx + rz * rz).sqrt();
-    }
+    let res = &ws.asm.residual;
+    ws.asm.fill_results(
+        model,
+        pl,
+        u,
+        |i| {
+            let p = pen(i);
+            if p > 0.0 {
+                force_at(i, p)
+            } else {
+                0.0
+            }
+        },
+        |i| u8::from(model.seabed.is_some() && pen(i) > 0.0),
+        |i| (res[3 * i], res[3 * i + 1]),
+        &mut r,
+    );
     r
 }
 
@@ -739,15 +513,17 @@ pub struct StaticSummary {
     pub top_angle_from_vertical: f64,
 }
 
-/// Summarises nodal results (`top_reaction` = the global residual at the top node's x and z).
-pub fn summarise(r: &LineResults, top_reaction: (f64, f64)) -> StaticSummary {
-    let n = r.arc.len();
+#[allow(clippy::needless_range_loop)]
+/// Summarises nodal results at the arc lengths `arc` (`top_reaction` = the global residual at the
+/// top node's x and z).
+pub fn summarise(arc: &[f64], r: &LineResults, top_reaction: (f64, f64)) -> StaticSummary {
+    let n = arc.len();
     let mut touchdown_arc = None;
     let mut touchdown_moment = None;
     for i in 1..n {
         if r.penetration[i] > 0.0 && r.penetration[i - 1] <= 0.0 {
             let f = -r.penetration[i - 1] / (r.penetration[i] - r.penetration[i - 1]);
-            touchdown_arc = Some(r.arc[i - 1] + f * (r.arc[i] - r.arc[i - 1]));
+            touchdown_arc = Some(arc[i - 1] + f * (arc[i] - arc[i - 1]));
             touchdown_moment = Some(r.moment[i - 1] + f * (r.moment[i] - r.moment[i - 1]));
             break;
         }
@@ -756,10 +532,10 @@ pub fn summarise(r: &LineResults, top_reaction: (f64, f64)) -> StaticSummary {
     let mut abs = (0.0f64, 0.0);
     for i in 0..n {
         if r.moment[i] < sag.0 {
-            sag = (r.moment[i], r.arc[i]);
+            sag = (r.moment[i], arc[i]);
         }
         if r.moment[i].abs() > abs.0.abs() {
-            abs = (r.moment[i], r.arc[i]);
+            abs = (r.moment[i], arc[i]);
         }
     }
     // The tangent at the top points down the line; its angle from the downward vertical.

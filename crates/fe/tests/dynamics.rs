@@ -4,8 +4,10 @@
 use catena_fe::analytical::tensioned_beam_frequency;
 use catena_fe::beam::Section;
 use catena_fe::dynamics::{
-    advance, initial_state, sdof_free_vibration, DynWorkspace, DynamicSettings, Scheme,
+    advance, initial_state, sdof_free_vibration, DynWorkspace, DynamicModel, DynamicSettings,
+    Scheme,
 };
+use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, Segment, Support};
 use catena_fe::statics::Placement;
 
@@ -115,11 +117,20 @@ fn line(
 fn settings(alpha: f64) -> DynamicSettings {
     DynamicSettings {
         scheme: Scheme::Hht { alpha },
-        hydro: None,
-        motion: None,
         tol: 1e-9,
         max_iter: 20,
         max_cuts: 4,
+    }
+}
+
+/// The dynamic Model of a line at a placement, without motion.
+fn dynamic(line: &LineModel, pl: &Placement, hydro: Option<Hydro>, alpha: f64) -> DynamicModel {
+    DynamicModel {
+        line: line.clone(),
+        placement: pl.clone(),
+        environment: Environment { hydro },
+        motion: None,
+        settings: settings(alpha),
     }
 }
 
@@ -150,8 +161,9 @@ fn tensioned_beam_frequencies() {
             .flat_map(|i| [model.arc[i] * stretch, 0.0, 0.0])
             .collect();
         let pl = Placement::new(&q);
+        let dm = dynamic(&model, &pl, None, 0.0);
         let mut ws = DynWorkspace::new(&model).expect("ws");
-        let mut st = initial_state(&model, &pl, None, &vec![0.0; q.len()], &mut ws);
+        let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
         for i in 0..nn {
             st.v[3 * i + 1] = 1e-3 * (mode as f64 * std::f64::consts::PI * model.arc[i] / l).sin();
         }
@@ -159,10 +171,9 @@ fn tensioned_beam_frequencies() {
         let period = std::f64::consts::TAU / omega;
         let dt = period / 100.0;
         let probe = (nn - 1) / (2 * mode);
-        let set = settings(0.0);
         let (mut ts, mut zs) = (vec![0.0], vec![0.0]);
         for _ in 0..600 {
-            advance(&model, &pl, &set, &mut st, &mut ws, dt).expect("steps");
+            advance(&dm, &mut st, &mut ws, dt).expect("steps");
             ts.push(st.t);
             zs.push(st.u[3 * probe + 1]);
         }
@@ -190,13 +201,13 @@ fn rigid_limit_pendulum() {
     let nn = model.nodes();
     let q: Vec<f64> = (0..nn).flat_map(|i| [model.arc[i], 0.0, 0.0]).collect();
     let pl = Placement::new(&q);
+    let dm = dynamic(&model, &pl, None, -0.1);
     let mut ws = DynWorkspace::new(&model).expect("ws");
-    let mut st = initial_state(&model, &pl, None, &vec![0.0; q.len()], &mut ws);
-    let set = settings(-0.1);
+    let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
     let tip = 3 * (nn - 1);
     let (mut ts, mut xs) = (vec![0.0], vec![l]);
     while st.t < 8.0 {
-        advance(&model, &pl, &set, &mut st, &mut ws, 0.002).expect("steps");
+        advance(&dm, &mut st, &mut ws, 0.002).expect("steps");
         ts.push(st.t);
         xs.push(pl.base[tip] + st.u[tip]);
     }
@@ -217,7 +228,7 @@ fn rigid_limit_pendulum() {
 /// and a series is interpolated linearly.
 #[test]
 fn top_motion_kinematics() {
-    use catena_fe::dynamics::{quintic_ramp, TopMotion};
+    use catena_fe::motion::{quintic_ramp, TopMotion};
     assert_eq!(quintic_ramp(0.0, 10.0), (0.0, 0.0, 0.0));
     assert_eq!(quintic_ramp(10.0, 10.0), (1.0, 0.0, 0.0));
     assert!((quintic_ramp(5.0, 10.0).0 - 0.5).abs() < 1e-15);
@@ -272,7 +283,6 @@ fn top_motion_kinematics() {
 /// (0.1939 m; the extra stretch under the load adds 0.1 % to T).
 #[test]
 fn drag_in_a_current_gives_the_string_deflection() {
-    use catena_fe::dynamics::Hydro;
     let (l, t, ea) = (100.0, 1e5, 1e7);
     let model = line(
         40,
@@ -303,18 +313,11 @@ fn drag_in_a_current_gives_the_string_deflection() {
         ca_normal: 1.0,
         current: vec![(0.0, 0.5)],
     };
-    let mut set = settings(-0.1);
-    set.hydro = Some(hydro);
+    let dm = dynamic(&model, &pl, Some(hydro), -0.1);
     let mut ws = DynWorkspace::new(&model).expect("ws");
-    let mut st = initial_state(
-        &model,
-        &pl,
-        set.hydro.as_ref(),
-        &vec![0.0; q.len()],
-        &mut ws,
-    );
+    let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
     while st.t < 80.0 {
-        advance(&model, &pl, &set, &mut st, &mut ws, 0.05).expect("steps");
+        advance(&dm, &mut st, &mut ws, 0.05).expect("steps");
     }
     let mid = (nn - 1) / 2;
     let delta = st.u[3 * mid];
@@ -322,8 +325,8 @@ fn drag_in_a_current_gives_the_string_deflection() {
     let expect = q_drag * l * (l * stretch) / (8.0 * t);
     println!(
         "midspan deflection {delta:.5} m, string theory {expect:.5} m; axial {:.1} .. {:.1} N",
-        ws.st.axial.iter().copied().fold(f64::INFINITY, f64::min),
-        ws.st.axial.iter().copied().fold(0.0, f64::max)
+        ws.asm.axial.iter().copied().fold(f64::INFINITY, f64::min),
+        ws.asm.axial.iter().copied().fold(0.0, f64::max)
     );
     assert!((delta / expect - 1.0).abs() < 2e-3, "{delta} vs {expect}");
     assert!(st.v[3 * mid].abs() < 1e-4, "settled: v = {}", st.v[3 * mid]);

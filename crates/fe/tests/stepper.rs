@@ -9,7 +9,10 @@
 
 use catena_fe::analytical::tensioned_beam_frequency;
 use catena_fe::beam::Section;
-use catena_fe::dynamics::{advance, initial_state, DynWorkspace, DynamicSettings, Hydro, Scheme};
+use catena_fe::dynamics::{
+    advance, initial_state, DynWorkspace, DynamicModel, DynamicSettings, Scheme,
+};
+use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, Segment, Support};
 use catena_fe::statics::{self, Placement, StaticOptions, StaticWorkspace};
 
@@ -37,14 +40,30 @@ fn model(seg: Segment, top: Support, anchor: Support, flexjoint: Option<(f64, f6
     .expect("model")
 }
 
-fn settings(alpha: f64, hydro: Option<Hydro>) -> DynamicSettings {
-    DynamicSettings {
-        scheme: Scheme::Hht { alpha },
-        hydro,
+/// Settings: HHT with `alpha` and the sea `hydro` (None: in air).
+struct Settings {
+    alpha: f64,
+    hydro: Option<Hydro>,
+}
+
+fn settings(alpha: f64, hydro: Option<Hydro>) -> Settings {
+    Settings { alpha, hydro }
+}
+
+fn dynamic(line: &LineModel, pl: &Placement, set: &Settings) -> DynamicModel {
+    DynamicModel {
+        line: line.clone(),
+        placement: pl.clone(),
+        environment: Environment {
+            hydro: set.hydro.clone(),
+        },
         motion: None,
-        tol: 1e-10,
-        max_iter: 20,
-        max_cuts: 0,
+        settings: DynamicSettings {
+            scheme: Scheme::Hht { alpha: set.alpha },
+            tol: 1e-10,
+            max_iter: 20,
+            max_cuts: 0,
+        },
     }
 }
 
@@ -63,7 +82,7 @@ fn hydro(cd_normal: f64, cd_axial: f64, ca_normal: f64) -> Hydro {
 /// displacement after each step (index 0 is the start).
 fn bar_history(
     seg: Segment,
-    set: &DynamicSettings,
+    set: &Settings,
     u0: f64,
     dt: f64,
     steps: usize,
@@ -72,13 +91,14 @@ fn bar_history(
     let l = seg.length;
     let q = vec![0.0, 0.0, -PI / 2.0, 0.0, -l, -PI / 2.0];
     let pl = Placement::new(&q);
+    let dm = dynamic(&m, &pl, set);
     let mut ws = DynWorkspace::new(&m).expect("workspace");
     let mut u = vec![0.0; 6];
     u[4] = -u0; // stretched by u0 (downwards)
-    let mut st = initial_state(&m, &pl, set.hydro.as_ref(), &u, &mut ws);
+    let mut st = initial_state(&dm, &u, &mut ws);
     let (mut t, mut x) = (vec![0.0], vec![u0]);
     for _ in 0..steps {
-        let info = advance(&m, &pl, set, &mut st, &mut ws, dt).expect("step");
+        let info = advance(&dm, &mut st, &mut ws, dt).expect("step");
         assert_eq!(info.cuts, 0);
         t.push(st.t);
         x.push(-st.u[4]);
@@ -259,9 +279,9 @@ fn added_mass_is_normal_and_of_the_right_size() {
         ("in air", None, mu),
         ("in water", Some(hydro(0.0, 0.0, ca)), mu + ma),
     ] {
-        let set = settings(0.0, h);
+        let dm = dynamic(&m, &pl, &settings(0.0, h));
         let mut ws = DynWorkspace::new(&m).expect("ws");
-        let mut st = initial_state(&m, &pl, set.hydro.as_ref(), &vec![0.0; q.len()], &mut ws);
+        let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
         for i in 0..nn {
             st.v[3 * i + 1] = 1e-3 * (PI * m.arc[i] / l).sin();
         }
@@ -270,7 +290,7 @@ fn added_mass_is_normal_and_of_the_right_size() {
         let mid = (nn - 1) / 2;
         let (mut ts, mut zs) = (vec![0.0], vec![0.0]);
         for _ in 0..500 {
-            advance(&m, &pl, &set, &mut st, &mut ws, dt).expect("step");
+            advance(&dm, &mut st, &mut ws, dt).expect("step");
             ts.push(st.t);
             zs.push(st.u[3 * mid + 1]);
         }

@@ -68,7 +68,7 @@ fn solve_scr(model: &LineModel) -> Solved {
     let r = line_results(model, &pl, &u, &mut ws, |_, p| {
         sb.seabed.backbone(p).total()
     });
-    let s = summarise(&r, (ws.residual[0], ws.residual[1]));
+    let s = summarise(&model.arc, &r, (ws.asm.residual[0], ws.asm.residual[1]));
     Solved { r, s, z_contact }
 }
 

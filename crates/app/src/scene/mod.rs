@@ -1,14 +1,64 @@
-//! Reading case files. Every table is deserialised with unknown keys denied, then checked; an error
-//! names the file, the key and what was expected.
+//! Reading case files. Parsing is pure: text goes in, a checked scene comes out. Files a scene names
+//! (a motion CSV today; RAO and storm tables later) are read through a [`Resolver`] the caller passes
+//! in, so a library user can serve them from memory. Every table is deserialised with unknown keys
+//! denied, then checked; an error names the file, the key and what was expected.
+//!
+//! A parsed scene keeps its TOML document, so that studies edit it by key path
+//! ([`edit`]: `dynamic.time_step`, `mesh[*].element_length`) and build the edited scene from the
+//! document, never by editing text.
 
+pub mod edit;
 pub mod riser;
 pub mod seabed;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::de::DeserializeOwned;
 
 use crate::error::{AppError, SceneError};
+
+/// Reads the files a scene names, by the name the scene gives (relative to the scene's own file).
+pub trait Resolver: Sync {
+    /// The text of the file `name`, or a message saying why it cannot be read (naming the path).
+    fn read(&self, name: &str) -> Result<String, String>;
+}
+
+/// Resolves names relative to a directory (the case file's own).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DirResolver {
+    /// The directory names are relative to.
+    pub dir: PathBuf,
+}
+
+impl DirResolver {
+    /// Resolves relative to the directory of the case file `case`.
+    pub fn beside(case: &Path) -> Self {
+        Self {
+            dir: case
+                .parent()
+                .map_or_else(|| PathBuf::from("."), Path::to_path_buf),
+        }
+    }
+}
+
+impl Resolver for DirResolver {
+    fn read(&self, name: &str) -> Result<String, String> {
+        let path = self.dir.join(name);
+        std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+/// A resolver that has no files: every read fails (for scenes that name none).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct NoFiles;
+
+impl Resolver for NoFiles {
+    fn read(&self, name: &str) -> Result<String, String> {
+        Err(format!(
+            "{name}: this scene was given without access to files"
+        ))
+    }
+}
 
 /// Reads `path` as UTF-8 text.
 pub fn read_text(path: &Path) -> Result<String, AppError> {
@@ -23,6 +73,17 @@ pub fn parse<T: DeserializeOwned>(file: &str, text: &str) -> Result<T, SceneErro
     })
 }
 
+/// Reads a TOML document (`file` names it in messages) into `T`: for scenes built from an edited
+/// document.
+pub fn from_doc<T: DeserializeOwned>(file: &str, doc: &toml::Table) -> Result<T, SceneError> {
+    toml::Value::Table(doc.clone())
+        .try_into()
+        .map_err(|e: toml::de::Error| SceneError::Parse {
+            file: file.to_string(),
+            message: e.to_string().trim_end().to_string(),
+        })
+}
+
 /// An [`SceneError::Invalid`] for `key` in `file`.
 pub fn invalid(file: &str, key: impl Into<String>, expected: impl Into<String>) -> SceneError {
     SceneError::Invalid {
@@ -35,4 +96,15 @@ pub fn invalid(file: &str, key: impl Into<String>, expected: impl Into<String>) 
 /// Requires an optional key.
 pub fn required<T: Copy>(file: &str, key: &str, v: Option<T>, what: &str) -> Result<T, SceneError> {
     v.ok_or_else(|| invalid(file, key, format!("{what} (the key is missing)")))
+}
+
+/// A stable 64-bit hash of a scene's text (FNV-1a), as 16 hex digits: checkpoints carry it so that a
+/// restart with another scene is refused.
+pub fn text_hash(text: &str) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("{h:016x}")
 }

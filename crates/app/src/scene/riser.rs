@@ -2,13 +2,16 @@
 //! Every key, its unit and its default are listed in `docs/scene.md`.
 
 use catena_fe::beam::Section;
-use catena_fe::dynamics::{DynamicSettings, Hydro, Scheme, TopMotion};
+use catena_fe::dynamics::{DynamicSettings, Scheme};
+use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
+use catena_fe::motion::TopMotion;
 use catena_fe::statics::EndPositions;
 use serde::Deserialize;
 
+use super::edit::{self, Edit};
 use super::seabed::SeabedTable;
-use super::{invalid, parse, required};
+use super::{from_doc, invalid, parse, required, Resolver};
 use crate::error::SceneError;
 
 /// `[environment]`.
@@ -257,8 +260,12 @@ pub struct Gauge {
 /// The dynamic part of a scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynamicSpec {
-    /// Solver settings and the optional effects.
+    /// Solver settings.
     pub settings: DynamicSettings,
+    /// The environment (hydrodynamics and current), each part only if the scene has it.
+    pub environment: Environment,
+    /// The top end's prescribed motion, if any.
+    pub motion: Option<TopMotion>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -298,8 +305,10 @@ pub struct RiserFile {
 pub struct RiserScene {
     /// The case file.
     pub file: String,
-    /// The file's text (stored with the results).
+    /// The file's text (stored with the results); for an edited scene, its document written out.
     pub text: String,
+    /// The parsed TOML document (edited by key path, see [`RiserScene::edited`]).
+    pub doc: toml::Table,
     /// Its title.
     pub title: String,
     /// The Model.
@@ -327,9 +336,37 @@ fn positive(file: &str, key: &str, v: f64, what: &str) -> Result<f64, SceneError
 }
 
 impl RiserScene {
-    /// Parses and checks scene text (`file` names it in messages).
-    pub fn parse(file: &str, text: &str) -> Result<Self, SceneError> {
+    /// Parses and checks scene text (`file` names it in messages); files the scene names are read
+    /// through `files`.
+    pub fn parse(file: &str, text: &str, files: &dyn Resolver) -> Result<Self, SceneError> {
         let raw: RiserFile = parse(file, text)?;
+        let doc: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| SceneError::Parse {
+                file: file.to_string(),
+                message: e.to_string().trim_end().to_string(),
+            })?;
+        Self::build(file, text.to_string(), doc, &raw, files)
+    }
+
+    /// The scene with `edits` applied to its document (key paths, see [`edit`]), checked anew. Its
+    /// text is the edited document written out.
+    pub fn edited(&self, edits: &[Edit], files: &dyn Resolver) -> Result<Self, SceneError> {
+        let mut doc = self.doc.clone();
+        edit::apply(&self.file, &mut doc, edits)?;
+        let raw: RiserFile = from_doc(&self.file, &doc)?;
+        let text = toml::to_string(&doc)
+            .map_err(|e| invalid(&self.file, "", format!("a document TOML can write ({e})")))?;
+        Self::build(&self.file, text, doc, &raw, files)
+    }
+
+    fn build(
+        file: &str,
+        text: String,
+        doc: toml::Table,
+        raw: &RiserFile,
+        files: &dyn Resolver,
+    ) -> Result<Self, SceneError> {
         let env = &raw.environment;
         positive(
             file,
@@ -560,7 +597,14 @@ impl RiserScene {
         }
         let _ = required::<f64>;
         let dynamic = match &raw.dynamic {
-            Some(d) => Some(dynamic_spec(file, &raw, d, env.water_density, l.length)?),
+            Some(d) => Some(dynamic_spec(
+                file,
+                raw,
+                d,
+                env.water_density,
+                l.length,
+                files,
+            )?),
             None => {
                 for (present, key) in [
                     (raw.hydrodynamics.is_some(), "hydrodynamics"),
@@ -581,7 +625,8 @@ impl RiserScene {
         };
         Ok(Self {
             file: file.to_string(),
-            text: text.to_string(),
+            text,
+            doc,
             title: raw.title.clone().unwrap_or_else(|| file.to_string()),
             model,
             ends: EndPositions {
@@ -609,6 +654,7 @@ fn dynamic_spec(
     d: &DynamicTable,
     water_density: f64,
     length: f64,
+    files: &dyn Resolver,
 ) -> Result<DynamicSpec, SceneError> {
     positive(file, "dynamic.duration", d.duration, "a duration in s")?;
     positive(file, "dynamic.time_step", d.time_step, "a time step in s")?;
@@ -782,17 +828,14 @@ fn dynamic_spec(
                     ramp: h.ramp,
                 })
             } else if let Some(se) = &m.series {
-                let base = std::path::Path::new(file)
-                    .parent()
-                    .unwrap_or(std::path::Path::new("."));
-                let path = base.join(&se.file);
-                let text = std::fs::read_to_string(&path).map_err(|e| {
+                let text = files.read(&se.file).map_err(|e| {
                     invalid(
                         file,
                         "motion.series.file",
-                        format!("a readable CSV file ({}: {e})", path.display()),
+                        format!("a readable CSV file ({e})"),
                     )
                 })?;
+                let path = &se.file;
                 let mut pts = Vec::new();
                 for (ln, line) in text.lines().enumerate().skip(1) {
                     if line.trim().is_empty() {
@@ -808,7 +851,7 @@ fn dynamic_spec(
                             "motion.series.file",
                             format!(
                                 "{}: line {}: three numbers t, dx, dz with t increasing",
-                                path.display(),
+                                path,
                                 ln + 1
                             ),
                         ));
@@ -819,10 +862,7 @@ fn dynamic_spec(
                     return Err(invalid(
                         file,
                         "motion.series.file",
-                        format!(
-                            "{}: a header line and at least one row t, dx, dz",
-                            path.display()
-                        ),
+                        format!("{}: a header line and at least one row t, dx, dz", path),
                     ));
                 }
                 Some(TopMotion::Series(pts))
@@ -885,10 +925,10 @@ fn dynamic_spec(
         ));
     }
     Ok(DynamicSpec {
+        environment: Environment { hydro },
+        motion,
         settings: DynamicSettings {
             scheme,
-            hydro,
-            motion,
             tol: d.tolerance,
             max_iter: d.max_iterations,
             max_cuts: d.max_step_cuts,

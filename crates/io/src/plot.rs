@@ -9,8 +9,9 @@ use catena_seabed::law::Law;
 use catena_seabed::rq::Mode;
 use plotters::prelude::*;
 
-use crate::error::AppError;
-use crate::soil_test::SoilTestCase;
+use catena::run::DynamicRun;
+use catena::soil_test::SoilTestCase;
+use catena::AppError;
 
 static FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
 static INIT: Once = Once::new();
@@ -291,6 +292,7 @@ fn marked_panel<DB: DrawingBackend>(
 pub fn static_line(
     path: &Path,
     title: &str,
+    arc: &[f64],
     r: &catena_fe::statics::LineResults,
 ) -> Result<(), AppError> {
     init_fonts();
@@ -304,14 +306,14 @@ pub fn static_line(
     let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
     let areas = root.split_evenly((2, 2));
     let blue = RGBColor(20, 90, 200);
-    let n = r.arc.len();
+    let n = arc.len();
     let shape: Vec<(f64, f64)> = (0..n).map(|i| (r.x[i], r.z[i])).collect();
     let mudline = vec![
         (r.x.iter().copied().fold(f64::INFINITY, f64::min), 0.0),
         (r.x.iter().copied().fold(f64::NEG_INFINITY, f64::max), 0.0),
     ];
     let by_arc = |v: &[f64], scale: f64| -> Vec<(f64, f64)> {
-        (0..n).map(|i| (r.arc[i], v[i] * scale)).collect()
+        (0..n).map(|i| (arc[i], v[i] * scale)).collect()
     };
     panel(
         &areas[0],
@@ -356,7 +358,7 @@ pub fn static_line(
 }
 
 /// Envelopes and ranges along the line, and the top tension history.
-pub fn dynamic(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppError> {
+pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
     let perr = |message: String| AppError::Plot {
@@ -371,7 +373,7 @@ pub fn dynamic(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppErr
     );
     let root = root.titled(&title, ("sans-serif", 24)).map_err(&err)?;
     let areas = root.split_evenly((2, 2));
-    let arc = &r.statics.model.arc;
+    let arc = &r.model.line.arc;
     let e = &r.envelopes;
     let line = |v: &[f64], s: f64| -> Vec<(f64, f64)> {
         arc.iter()
@@ -415,10 +417,10 @@ pub fn dynamic(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppErr
     )
     .map_err(perr)?;
     let th: Vec<(f64, f64)> = r
-        .hist
+        .top
         .t
         .iter()
-        .zip(&r.hist.top_tension)
+        .zip(&r.top.top_tension)
         .map(|(t, v)| (*t, v * 1e-3))
         .collect();
     panel(
@@ -435,7 +437,8 @@ pub fn dynamic(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppErr
 
 /// Bending moment at each gauge against the top height: rising top (pull-up) red, falling
 /// (lay-down) blue, still grey — the manner of the paper's Figures 7 and 8.
-pub fn gauges(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppError> {
+#[allow(clippy::needless_range_loop)]
+pub fn gauges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
     let perr = |message: String| AppError::Plot {
@@ -446,14 +449,15 @@ pub fn gauges(path: &Path, r: &crate::run_cmd::DynamicRun) -> Result<(), AppErro
     let root = BitMapBackend::new(path, (900 * ng.min(3) as u32, 750)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let areas = root.split_evenly((1, ng.min(3)));
-    let h = &r.hist;
+    let h = &r.top;
     for (k, g) in r.spec.gauges.iter().enumerate().take(3) {
+        let gm = &r.gauges.traces[k].moment;
         let mut up = Vec::new();
         let mut down = Vec::new();
         let mut still = Vec::new();
         for i in 1..h.t.len() {
             let dz = h.top_z[i] - h.top_z[i - 1];
-            let p = (h.top_z[i], h.gauge_moment[k][i] * 1e-3);
+            let p = (h.top_z[i], gm[i] * 1e-3);
             if dz > 1e-9 {
                 up.push(p);
             } else if dz < -1e-9 {

@@ -2,6 +2,10 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use catena_cli::commands;
 
 use clap::{Parser, Subcommand};
 
@@ -95,7 +99,7 @@ fn main() -> ExitCode {
             } else {
                 Some(plot.unwrap_or_else(|| out.with_extension("png")))
             };
-            catena::soil_test::command(&case, &out, plot.as_deref()).map(|r| print!("{}", r.text))
+            commands::soil_test(&case, &out, plot.as_deref()).map(|t| print!("{t}"))
         }
         Command::Run {
             case,
@@ -104,8 +108,25 @@ fn main() -> ExitCode {
             checkpoint_every,
             restart,
         } => {
-            catena::run_cmd::command_with(&case, &out, !quiet, checkpoint_every, restart.as_deref())
-                .map(|t| print!("{t}"))
+            // SIGINT and SIGTERM end the run at the next converged step; its records are flushed
+            // and summary.json says where it stopped.
+            let stop = Arc::new(AtomicBool::new(false));
+            let flag = stop.clone();
+            if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)) {
+                eprintln!("warning: cannot catch SIGINT/SIGTERM ({e}); an interrupted run keeps its records up to the last flush");
+            }
+            commands::run(
+                &case,
+                &out,
+                &commands::RunCommandOptions {
+                    progress: !quiet,
+                    checkpoint_every,
+                    restart,
+                    stop: Some(stop),
+                    stop_after: None,
+                },
+            )
+            .map(|t| print!("{t}"))
         }
         Command::Convergence {
             case,
@@ -114,7 +135,7 @@ fn main() -> ExitCode {
             dt_factors,
             jobs,
             quiet,
-        } => catena::convergence::command(
+        } => commands::convergence(
             &case,
             &out,
             &catena::convergence::ConvergenceOptions {
@@ -125,9 +146,7 @@ fn main() -> ExitCode {
             },
         )
         .map(|t| print!("{t}")),
-        Command::Static { case, out } => {
-            catena::statics_cmd::command(&case, &out).map(|t| print!("{t}"))
-        }
+        Command::Static { case, out } => commands::static_(&case, &out).map(|t| print!("{t}")),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

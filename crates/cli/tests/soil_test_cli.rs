@@ -47,11 +47,11 @@ impl Csv {
     }
 }
 
-fn run_case(name: &str) -> (catena::soil_test::Report, Csv) {
+fn run_case(name: &str) -> (String, Csv) {
     let case = root().join(format!("cases/soil/{name}.toml"));
     let out = tmp(&format!("{name}.csv"));
     let png = tmp(&format!("{name}.png"));
-    let r = catena::soil_test::command(&case, &out, Some(&png)).expect("case runs");
+    let r = catena_cli::commands::soil_test(&case, &out, Some(&png)).expect("case runs");
     assert!(std::fs::metadata(&png).expect("plot written").len() > 10_000);
     (r, Csv::read(&out))
 }

@@ -105,7 +105,7 @@ fn values_do_not_depend_on_the_number_of_jobs_and_files_are_written() {
         }
     }
     let out = dir.join("out");
-    let text = convergence::command(&case, &out, &one).expect("command");
+    let text = catena_cli::commands::convergence(&case, &out, &one).expect("command");
     assert!(text.contains("touchdown-zone moment range"), "{text}");
     let csv = std::fs::read_to_string(out.join("convergence.csv")).expect("csv");
     let lines: Vec<&str> = csv.lines().collect();
@@ -121,7 +121,7 @@ fn values_do_not_depend_on_the_number_of_jobs_and_files_are_written() {
     // The variant scenes are real scenes: each parses and has the scaled settings.
     let scene =
         std::fs::read_to_string(out.join("scenes/short-heave-mesh2-dt1.toml")).expect("variant");
-    let s = RiserScene::parse("variant", &scene).expect("parses");
+    let s = RiserScene::parse("variant", &scene, &catena::scene::NoFiles).expect("parses");
     assert_eq!(s.model.elements.len(), 200);
     assert_eq!(s.dynamic.expect("dynamic").output_every, 1);
 }

@@ -21,7 +21,7 @@ fn tmp(name: &str) -> PathBuf {
 #[test]
 fn heave_benchmark_static_outputs() {
     let out = tmp("scr-heave");
-    let text = catena::statics_cmd::command(&root().join("cases/benchmarks/scr-heave.toml"), &out)
+    let text = catena_cli::commands::static_(&root().join("cases/benchmarks/scr-heave.toml"), &out)
         .expect("runs");
     assert!(text.contains("top tension"));
     let f = hdf5::File::open(out.join("results.h5")).expect("h5");

@@ -1,0 +1,497 @@
+//! Observers of a dynamic run: every output is one. The run hands each converged step to every
+//! observer ([`Observer::step`]); observers never touch the State. The built-in ones live here:
+//! [`Envelopes`] (per-node extremes from `envelope_start`, every step), [`Gauges`] (moment and tension
+//! at arc lengths: histories at the output interval, extremes every step), [`TopHistory`] (top
+//! position and tension: histories at the output interval, extremes every step) and [`Checkpointer`]
+//! (writes a [`Checkpoint`] every N steps). The HDF5 recorder and the progress bar are observers in
+//! the crates above this one; fatigue will be one more.
+//!
+//! An observer that keeps state across steps saves it into checkpoints ([`Observer::save`]) and
+//! takes it back on restart ([`Observer::restore`]), so a restarted run's outputs cover the whole run.
+
+use std::path::{Path, PathBuf};
+
+use catena_fe::assembly::LineResults;
+use catena_fe::dynamics::{DynState, DynamicModel, StepInfo};
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use crate::checkpoint::Checkpoint;
+use crate::error::AppError;
+use crate::scene::riser::{DynamicSpec, Gauge};
+use crate::statics::StaticRun;
+
+/// What every observer may read about the run.
+#[derive(Debug, Clone, Copy)]
+pub struct RunContext<'a> {
+    /// The statics the run started from (scene, results).
+    pub statics: &'a StaticRun,
+    /// The dynamic Model.
+    pub model: &'a DynamicModel,
+    /// The dynamic specification (duration, Δt, output interval, envelope start, placed gauges).
+    pub spec: &'a DynamicSpec,
+}
+
+/// One converged step (or the initial state, step 0).
+#[derive(Debug, Clone, Copy)]
+pub struct StepView<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// Time steps of `dynamic.time_step` completed.
+    pub step: u64,
+    /// The committed State.
+    pub state: &'a DynState,
+    /// The nodal results of that State.
+    pub results: &'a LineResults,
+    /// What the step took (zero for the initial state).
+    pub info: StepInfo,
+    /// An output record is due at this step (every `output_interval`).
+    pub record: bool,
+    /// The step lies in the envelope window (`t ≥ envelope_start`).
+    pub envelope: bool,
+}
+
+/// How a run ended (or stops).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stop {
+    /// A step did not converge (when, where and how much: see the error).
+    Failed(catena_fe::dynamics::StepError),
+    /// An observer asked the run to stop (e.g. SIGINT or SIGTERM), with its reason.
+    Interrupted(String),
+    /// The run was asked to stop after a number of steps (`stop_after`).
+    StoppedAfter(u64),
+}
+
+impl std::fmt::Display for Stop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Stop::Failed(e) => write!(f, "{e}"),
+            Stop::Interrupted(r) => write!(f, "interrupted: {r}"),
+            Stop::StoppedAfter(k) => write!(f, "stopped as asked after step {k}"),
+        }
+    }
+}
+
+/// What an observer tells the run after a step.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Control {
+    /// Go on.
+    Continue,
+    /// Stop after this step (everything up to it is kept), for this reason.
+    Stop(String),
+}
+
+/// An observer of converged steps.
+pub trait Observer {
+    /// Its name (the key of its state in checkpoints).
+    fn name(&self) -> &'static str;
+
+    /// Called once before the first step: with the initial state (step 0) on a fresh run, or with the
+    /// restored state on a restart (`restarted`; its state was restored just before).
+    fn start(
+        &mut self,
+        ctx: &RunContext<'_>,
+        first: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        let _ = (ctx, first, restarted);
+        Ok(())
+    }
+
+    /// Called after every converged step.
+    fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError>;
+
+    /// Called once at the end, however the run ended (`stop` is `None` when it completed).
+    fn finish(&mut self, ctx: &RunContext<'_>, stop: Option<&Stop>) -> Result<(), AppError> {
+        let _ = (ctx, stop);
+        Ok(())
+    }
+
+    /// Makes its state durable (e.g. flushes buffered records) and returns it for a checkpoint
+    /// (`Null` when it keeps none).
+    fn save(&mut self) -> Result<Value, AppError> {
+        Ok(Value::Null)
+    }
+
+    /// Takes back the state it saved.
+    fn restore(&mut self, v: &Value) -> Result<(), String> {
+        let _ = v;
+        Ok(())
+    }
+
+    /// Whether it wants a checkpoint after this step.
+    fn wants_checkpoint(&self, step: u64) -> bool {
+        let _ = step;
+        false
+    }
+
+    /// Receives the checkpoint it asked for.
+    fn checkpoint(&mut self, cp: &Checkpoint) -> Result<(), AppError> {
+        let _ = cp;
+        Ok(())
+    }
+}
+
+/// Non-finite values (the ±∞ of empty extremes) as JSON nulls and back.
+fn enc(v: &[f64]) -> Vec<Option<f64>> {
+    v.iter().map(|x| x.is_finite().then_some(*x)).collect()
+}
+
+fn dec(v: &[Option<f64>], empty: f64) -> Vec<f64> {
+    v.iter().map(|x| x.unwrap_or(empty)).collect()
+}
+
+fn decode<T: for<'de> Deserialize<'de>>(v: &Value, what: &str) -> Result<T, String> {
+    serde_json::from_value(v.clone()).map_err(|e| format!("{what}: {e}"))
+}
+
+/// `(least, greatest)` of a series (`(∞, −∞)` when it is empty).
+pub fn extremes(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(*x), hi.max(*x))
+        })
+}
+
+/// Per-node envelopes over the envelope window, from every step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Envelopes {
+    /// Minimum bending moment, N·m.
+    pub moment_min: Vec<f64>,
+    /// Maximum bending moment, N·m.
+    pub moment_max: Vec<f64>,
+    /// Minimum effective tension, N.
+    pub tension_min: Vec<f64>,
+    /// Maximum effective tension, N.
+    pub tension_max: Vec<f64>,
+    /// Maximum penetration, m.
+    pub penetration_max: Vec<f64>,
+    /// Minimum penetration, m (negative: clear of the seabed).
+    pub penetration_min: Vec<f64>,
+    /// Steps taken into the envelopes.
+    pub samples: u64,
+}
+
+#[derive(Serialize, Deserialize)]
+struct EnvelopesSaved {
+    moment_min: Vec<Option<f64>>,
+    moment_max: Vec<Option<f64>>,
+    tension_min: Vec<Option<f64>>,
+    tension_max: Vec<Option<f64>>,
+    penetration_max: Vec<Option<f64>>,
+    penetration_min: Vec<Option<f64>>,
+    samples: u64,
+}
+
+impl Envelopes {
+    /// Empty envelopes for `n` nodes.
+    pub fn new(n: usize) -> Self {
+        Self {
+            moment_min: vec![f64::INFINITY; n],
+            moment_max: vec![f64::NEG_INFINITY; n],
+            tension_min: vec![f64::INFINITY; n],
+            tension_max: vec![f64::NEG_INFINITY; n],
+            penetration_max: vec![f64::NEG_INFINITY; n],
+            penetration_min: vec![f64::INFINITY; n],
+            samples: 0,
+        }
+    }
+
+    fn update(&mut self, s: &LineResults) {
+        for i in 0..s.moment.len() {
+            self.moment_min[i] = self.moment_min[i].min(s.moment[i]);
+            self.moment_max[i] = self.moment_max[i].max(s.moment[i]);
+            self.tension_min[i] = self.tension_min[i].min(s.tension[i]);
+            self.tension_max[i] = self.tension_max[i].max(s.tension[i]);
+            self.penetration_max[i] = self.penetration_max[i].max(s.penetration[i]);
+            self.penetration_min[i] = self.penetration_min[i].min(s.penetration[i]);
+        }
+        self.samples += 1;
+    }
+
+    /// The moment range at each node.
+    pub fn moment_range(&self) -> Vec<f64> {
+        self.moment_max
+            .iter()
+            .zip(&self.moment_min)
+            .map(|(a, b)| a - b)
+            .collect()
+    }
+
+    /// The tension range at each node.
+    pub fn tension_range(&self) -> Vec<f64> {
+        self.tension_max
+            .iter()
+            .zip(&self.tension_min)
+            .map(|(a, b)| a - b)
+            .collect()
+    }
+}
+
+impl Observer for Envelopes {
+    fn name(&self) -> &'static str {
+        "envelopes"
+    }
+    fn start(
+        &mut self,
+        _: &RunContext<'_>,
+        s: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        if !restarted && s.envelope {
+            self.update(s.results);
+        }
+        Ok(())
+    }
+    fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        if s.envelope {
+            self.update(s.results);
+        }
+        Ok(Control::Continue)
+    }
+    fn save(&mut self) -> Result<Value, AppError> {
+        Ok(serde_json::to_value(EnvelopesSaved {
+            moment_min: enc(&self.moment_min),
+            moment_max: enc(&self.moment_max),
+            tension_min: enc(&self.tension_min),
+            tension_max: enc(&self.tension_max),
+            penetration_max: enc(&self.penetration_max),
+            penetration_min: enc(&self.penetration_min),
+            samples: self.samples,
+        })
+        .unwrap_or(Value::Null))
+    }
+    fn restore(&mut self, v: &Value) -> Result<(), String> {
+        let s: EnvelopesSaved = decode(v, "envelopes")?;
+        let n = self.moment_min.len();
+        for (name, len) in [
+            ("moment_min", s.moment_min.len()),
+            ("moment_max", s.moment_max.len()),
+            ("tension_min", s.tension_min.len()),
+            ("tension_max", s.tension_max.len()),
+            ("penetration_max", s.penetration_max.len()),
+            ("penetration_min", s.penetration_min.len()),
+        ] {
+            if len != n {
+                return Err(format!("envelopes.{name} has {len} entries, expected {n}"));
+            }
+        }
+        let (inf, ninf) = (f64::INFINITY, f64::NEG_INFINITY);
+        self.moment_min = dec(&s.moment_min, inf);
+        self.moment_max = dec(&s.moment_max, ninf);
+        self.tension_min = dec(&s.tension_min, inf);
+        self.tension_max = dec(&s.tension_max, ninf);
+        self.penetration_max = dec(&s.penetration_max, ninf);
+        self.penetration_min = dec(&s.penetration_min, inf);
+        self.samples = s.samples;
+        Ok(())
+    }
+}
+
+/// Linear interpolation of nodal values at an arc length.
+pub fn at_arc(arc: &[f64], v: &[f64], s: f64) -> f64 {
+    let i = arc.partition_point(|a| *a < s).clamp(1, arc.len() - 1);
+    let f = ((s - arc[i - 1]) / (arc[i] - arc[i - 1])).clamp(0.0, 1.0);
+    v[i - 1] + f * (v[i] - v[i - 1])
+}
+
+/// One gauge's record.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct GaugeTrace {
+    /// Bending moment at each record, N·m.
+    pub moment: Vec<f64>,
+    /// Effective tension at each record, N.
+    pub tension: Vec<f64>,
+    /// Least and greatest moment over every step of the run, N·m.
+    pub moment_extremes: (Option<f64>, Option<f64>),
+    /// Least and greatest moment over the steps where the top rose, then where it fell, N·m.
+    pub by_direction: [(Option<f64>, Option<f64>); 2],
+}
+
+fn widen(e: &mut (Option<f64>, Option<f64>), v: f64) {
+    e.0 = Some(e.0.map_or(v, |a| a.min(v)));
+    e.1 = Some(e.1.map_or(v, |a| a.max(v)));
+}
+
+/// Gauges: moment and tension at fixed arc lengths, recorded at the output interval; extremes over
+/// every step, overall and split by the direction the top moves (pull-up: rising; lay-down:
+/// falling).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gauges {
+    /// The gauges (arc lengths placed).
+    pub gauges: Vec<Gauge>,
+    /// One trace per gauge.
+    pub traces: Vec<GaugeTrace>,
+    /// The values of the last step, `(moment, tension)` per gauge.
+    pub current: Vec<(f64, f64)>,
+    last_top_z: Option<f64>,
+}
+
+impl Gauges {
+    /// Gauges at the placed arc lengths.
+    pub fn new(gauges: &[Gauge]) -> Self {
+        Self {
+            gauges: gauges.to_vec(),
+            traces: vec![GaugeTrace::default(); gauges.len()],
+            current: vec![(0.0, 0.0); gauges.len()],
+            last_top_z: None,
+        }
+    }
+
+    fn take(&mut self, arc: &[f64], s: &StepView<'_>) {
+        let r = s.results;
+        let dz = self.last_top_z.map(|z| r.z[0] - z);
+        for (k, g) in self.gauges.iter().enumerate() {
+            let m = at_arc(arc, &r.moment, g.arc);
+            let t = at_arc(arc, &r.tension, g.arc);
+            self.current[k] = (m, t);
+            let tr = &mut self.traces[k];
+            widen(&mut tr.moment_extremes, m);
+            match dz {
+                Some(d) if d > 1e-9 => widen(&mut tr.by_direction[0], m),
+                Some(d) if d < -1e-9 => widen(&mut tr.by_direction[1], m),
+                _ => {}
+            }
+            if s.record {
+                tr.moment.push(m);
+                tr.tension.push(t);
+            }
+        }
+        self.last_top_z = Some(r.z[0]);
+    }
+}
+
+impl Observer for Gauges {
+    fn name(&self) -> &'static str {
+        "gauges"
+    }
+    fn start(
+        &mut self,
+        ctx: &RunContext<'_>,
+        s: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        if !restarted {
+            self.take(&ctx.model.line.arc, s);
+        }
+        Ok(())
+    }
+    fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        self.take(&ctx.model.line.arc, s);
+        Ok(Control::Continue)
+    }
+    fn save(&mut self) -> Result<Value, AppError> {
+        Ok(serde_json::json!({ "traces": self.traces, "last_top_z": self.last_top_z }))
+    }
+    fn restore(&mut self, v: &Value) -> Result<(), String> {
+        let traces: Vec<GaugeTrace> = decode(&v["traces"], "gauges.traces")?;
+        if traces.len() != self.gauges.len() {
+            return Err(format!(
+                "gauges: {} traces saved, the scene has {} gauges",
+                traces.len(),
+                self.gauges.len()
+            ));
+        }
+        self.traces = traces;
+        self.last_top_z = decode(&v["last_top_z"], "gauges.last_top_z")?;
+        Ok(())
+    }
+}
+
+/// The top end: time, position and tension at the output interval (for plots and the gauge view);
+/// the top tension's extremes over the envelope window from every step.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct TopHistory {
+    /// Time of each record, s.
+    pub t: Vec<f64>,
+    /// Top x at each record, m.
+    pub top_x: Vec<f64>,
+    /// Top height at each record, m.
+    pub top_z: Vec<f64>,
+    /// Top tension at each record, N.
+    pub top_tension: Vec<f64>,
+    /// Least and greatest top tension over every step of the envelope window, N.
+    pub tension_extremes: (Option<f64>, Option<f64>),
+}
+
+impl TopHistory {
+    fn take(&mut self, s: &StepView<'_>) {
+        let r = s.results;
+        if s.envelope {
+            widen(&mut self.tension_extremes, r.tension[0]);
+        }
+        if s.record {
+            self.t.push(s.t);
+            self.top_x.push(r.x[0]);
+            self.top_z.push(r.z[0]);
+            self.top_tension.push(r.tension[0]);
+        }
+    }
+}
+
+impl Observer for TopHistory {
+    fn name(&self) -> &'static str {
+        "top"
+    }
+    fn start(
+        &mut self,
+        _: &RunContext<'_>,
+        s: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        if !restarted {
+            self.take(s);
+        }
+        Ok(())
+    }
+    fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        self.take(s);
+        Ok(Control::Continue)
+    }
+    fn save(&mut self) -> Result<Value, AppError> {
+        Ok(serde_json::to_value(&*self).unwrap_or(Value::Null))
+    }
+    fn restore(&mut self, v: &Value) -> Result<(), String> {
+        *self = decode(v, "top")?;
+        Ok(())
+    }
+}
+
+/// Writes a checkpoint every `every` steps to `path` (atomically: a temporary file, then a rename).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpointer {
+    /// Steps between checkpoints (> 0).
+    pub every: u64,
+    /// The checkpoint file.
+    pub path: PathBuf,
+    /// Checkpoints written.
+    pub written: u64,
+}
+
+impl Checkpointer {
+    /// A checkpointer writing to `path` every `every` steps.
+    pub fn new(path: &Path, every: u64) -> Self {
+        Self {
+            every,
+            path: path.to_path_buf(),
+            written: 0,
+        }
+    }
+}
+
+impl Observer for Checkpointer {
+    fn name(&self) -> &'static str {
+        "checkpointer"
+    }
+    fn step(&mut self, _: &RunContext<'_>, _: &StepView<'_>) -> Result<Control, AppError> {
+        Ok(Control::Continue)
+    }
+    fn wants_checkpoint(&self, step: u64) -> bool {
+        self.every > 0 && step % self.every == 0
+    }
+    fn checkpoint(&mut self, cp: &Checkpoint) -> Result<(), AppError> {
+        cp.write(&self.path)?;
+        self.written += 1;
+        Ok(())
+    }
+}

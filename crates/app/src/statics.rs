@@ -1,0 +1,108 @@
+//! The static configuration of a riser or pipeline on the seabed, with the seabed in
+//! initial-penetration mode only (the paper's prescription): the catenary seed, the Newton solve
+//! and, with a flexjoint whose neutral angle the scene leaves to the statics, a second solve with the
+//! neutral angle at the static top angle (zero static flexjoint moment).
+//!
+//! The Model is immutable: the second solve uses a new Model
+//! ([`catena_fe::model::LineModel::with_flexjoint_neutral`]), and that is the one the run keeps.
+
+use std::path::Path;
+use std::time::Instant;
+
+use catena_fe::model::LineModel;
+use catena_fe::statics::{
+    self, LineResults, Placement, StaticOptions, StaticReport, StaticSummary, StaticWorkspace,
+};
+
+use crate::error::AppError;
+use crate::scene::riser::RiserScene;
+use crate::scene::DirResolver;
+
+/// A solved static configuration.
+#[derive(Debug, Clone)]
+pub struct StaticRun {
+    /// The scene.
+    pub scene: RiserScene,
+    /// The Model the statics ended with (the flexjoint's neutral angle final).
+    pub model: LineModel,
+    /// The base configuration (the seed).
+    pub placement: Placement,
+    /// Displacements from the base at equilibrium.
+    pub u: Vec<f64>,
+    /// Nodal results.
+    pub results: LineResults,
+    /// Summary numbers.
+    pub summary: StaticSummary,
+    /// What the solver did.
+    pub report: StaticReport,
+    /// Wall time of the whole static analysis, s.
+    pub wall_seconds: f64,
+}
+
+/// Reads a scene file; files it names are read relative to its directory.
+pub fn read_scene(path: &Path) -> Result<RiserScene, AppError> {
+    let text = crate::scene::read_text(path)?;
+    Ok(RiserScene::parse(
+        &path.display().to_string(),
+        &text,
+        &DirResolver::beside(path),
+    )?)
+}
+
+/// Solves the statics of a scene.
+pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
+    let t0 = Instant::now();
+    let file = scene.file.clone();
+    let st_err = |source| AppError::Statics {
+        file: file.clone(),
+        source,
+    };
+    let q = statics::catenary_seed(&scene.model, &scene.ends).map_err(st_err)?;
+    let given_neutral = scene
+        .flexjoint_neutral_from_vertical
+        .map(|phi| -std::f64::consts::FRAC_PI_2 - phi);
+    let mut model = scene
+        .model
+        .clone()
+        .with_flexjoint_neutral(given_neutral.unwrap_or(q[2]));
+    let placement = Placement::new(&q);
+    let mut u = vec![0.0; q.len()];
+    let mut ws = StaticWorkspace::new(&model).map_err(|source| AppError::Solver {
+        file: file.clone(),
+        source,
+    })?;
+    let opts = StaticOptions {
+        tol: scene.statics.tolerance,
+        max_iter: scene.statics.max_iterations,
+        ..StaticOptions::default()
+    };
+    let mut report = statics::solve(&model, &placement, &mut u, &mut ws, &opts).map_err(st_err)?;
+    if model.flexjoint.is_some() && given_neutral.is_none() {
+        // Neutral angle = the static departure angle: zero static flexjoint moment.
+        model = model.with_flexjoint_neutral(placement.base[2] + u[2]);
+        let again = statics::solve(&model, &placement, &mut u, &mut ws, &opts).map_err(st_err)?;
+        report.iterations += again.iterations;
+        report.residual = again.residual;
+        report.assembly_seconds += again.assembly_seconds;
+        report.solve_seconds += again.solve_seconds;
+    }
+    let seabed = model.seabed;
+    let results = statics::line_results(&model, &placement, &u, &mut ws, |_, p| {
+        seabed.map_or(0.0, |s| s.seabed.backbone(p).total())
+    });
+    let summary = statics::summarise(
+        &model.arc,
+        &results,
+        (ws.asm.residual[0], ws.asm.residual[1]),
+    );
+    Ok(StaticRun {
+        scene,
+        model,
+        placement,
+        u,
+        results,
+        summary,
+        report,
+        wall_seconds: t0.elapsed().as_secs_f64(),
+    })
+}

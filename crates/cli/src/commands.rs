@@ -1,0 +1,211 @@
+//! The commands: read the case, run the library, write the outputs.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+
+use catena::checkpoint::Checkpoint;
+use catena::convergence::ConvergenceOptions;
+use catena::observe::{Checkpointer, Observer, Stop};
+use catena::run::{self, RunOptions};
+use catena::soil_test::SoilTestCase;
+use catena::statics;
+use catena::AppError;
+use catena_io::convergence as cv;
+use catena_io::h5::{self, Recorder};
+use catena_io::{plot, report, soil};
+
+use crate::progress::{ProgressBar, SignalStop};
+
+fn write_json(path: &Path, v: &serde_json::Value) -> Result<(), AppError> {
+    let text = serde_json::to_string_pretty(v).map_err(|e| AppError::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    std::fs::write(path, text).map_err(|e| AppError::io(path, e))
+}
+
+/// `catena static CASE --out DIR`: `results.h5` (`/static`), `summary.json`, `static.png`.
+pub fn static_(case: &Path, out: &Path) -> Result<String, AppError> {
+    let scene = statics::read_scene(case)?;
+    let run = statics::solve(scene)?;
+    std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    let h5p = out.join("results.h5");
+    h5::write_static(&h5p, &run)?;
+    let js = out.join("summary.json");
+    write_json(&js, &report::static_json(&run))?;
+    let png: PathBuf = out.join("static.png");
+    plot::static_line(&png, &run.scene.title, &run.model.arc, &run.results)?;
+    let mut t = report::static_text(&run);
+    let _ = writeln!(
+        t,
+        "  wrote {}, {}, {}",
+        h5p.display(),
+        js.display(),
+        png.display()
+    );
+    Ok(t)
+}
+
+/// Options of `catena run`.
+#[derive(Debug, Clone, Default)]
+pub struct RunCommandOptions {
+    /// Show a progress bar.
+    pub progress: bool,
+    /// Write `DIR/checkpoint.json` every this many steps.
+    pub checkpoint_every: Option<u64>,
+    /// Continue from this checkpoint.
+    pub restart: Option<PathBuf>,
+    /// Set by the SIGINT/SIGTERM handler: the run ends at the next step.
+    pub stop: Option<Arc<AtomicBool>>,
+    /// Stop (successfully) after this many steps.
+    pub stop_after: Option<u64>,
+}
+
+/// `catena run CASE --out DIR`: statics then dynamics; `results.h5` streamed, `summary.json`
+/// (also for a run that stopped: `"completed": false` and the reason), `static.png`,
+/// `dynamic.png` and, with gauges, `gauges.png`. A restart into the same DIR continues its
+/// `results.h5`.
+pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, AppError> {
+    if opts.checkpoint_every == Some(0) {
+        return Err(AppError::Run {
+            file: case.display().to_string(),
+            message: "--checkpoint-every: expected a number of steps >= 1".into(),
+        });
+    }
+    let restart = opts.restart.as_deref().map(Checkpoint::read).transpose()?;
+    let scene = statics::read_scene(case)?;
+    if scene.dynamic.is_none() {
+        return Err(AppError::Run {
+            file: scene.file.clone(),
+            message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
+        });
+    }
+    let st = statics::solve(scene)?;
+    std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    let h5p = out.join("results.h5");
+    let gauge_names: Vec<String> = st.scene.dynamic.as_ref().map_or_else(Vec::new, |d| {
+        d.gauges.iter().map(|g| g.name.clone()).collect()
+    });
+    let mut rec = if restart.is_some() && h5p.exists() {
+        Recorder::open(&h5p, st.model.nodes(), &gauge_names)?
+    } else {
+        Recorder::create(&h5p, &st, &gauge_names)?
+    };
+    plot::static_line(
+        &out.join("static.png"),
+        &st.scene.title,
+        &st.model.arc,
+        &st.results,
+    )?;
+    let mut bar = ProgressBar::new();
+    let mut cp = opts
+        .checkpoint_every
+        .map(|every| Checkpointer::new(&out.join("checkpoint.json"), every));
+    let mut sig = opts.stop.clone().map(SignalStop::new);
+    let mut extra: Vec<&mut dyn Observer> = vec![&mut rec];
+    if opts.progress {
+        extra.push(&mut bar);
+    }
+    if let Some(c) = cp.as_mut() {
+        extra.push(c);
+    }
+    if let Some(s) = sig.as_mut() {
+        extra.push(s);
+    }
+    let r = run::run(
+        st,
+        &mut extra,
+        RunOptions {
+            restart_file: opts
+                .restart
+                .as_deref()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default(),
+            restart,
+            stop_after: opts.stop_after,
+        },
+    )?;
+    let js = out.join("summary.json");
+    write_json(&js, &report::dynamic_json(&r))?;
+    plot::dynamic(&out.join("dynamic.png"), &r)?;
+    if !r.spec.gauges.is_empty() {
+        plot::gauges(&out.join("gauges.png"), &r)?;
+    }
+    let mut t = report::dynamic_text(&r);
+    let _ = writeln!(
+        t,
+        "  wrote {} ({} records), {}, plots in {}",
+        h5p.display(),
+        rec.records(),
+        js.display(),
+        out.display()
+    );
+    match &r.stop {
+        Some(Stop::Failed(_)) | Some(Stop::Interrupted(_)) => Err(AppError::Run {
+            file: r.statics.scene.file.clone(),
+            message: format!(
+                "{}\n{t}results up to the last converged step (t = {} s) are in {}",
+                r.stop.as_ref().map(ToString::to_string).unwrap_or_default(),
+                r.t_reached,
+                h5p.display()
+            ),
+        }),
+        _ => Ok(t),
+    }
+}
+
+/// `catena soil-test CASE --out RESULT.csv [--plot PNG]`.
+pub fn soil_test(
+    case_path: &Path,
+    out: &Path,
+    plot_path: Option<&Path>,
+) -> Result<String, AppError> {
+    let case = SoilTestCase::read(case_path)?;
+    let r = case.run()?;
+    soil::write_csv(out, &case, &r)?;
+    if let Some(p) = plot_path {
+        let cycles = case.cycle_ends(&r);
+        let z_start = case.start_of_cycles(&r);
+        plot::soil_test(p, &case, &r, &cycles, z_start)?;
+    }
+    Ok(soil::text(&case, &r, out, plot_path))
+}
+
+/// The whole command: runs the study and writes `DIR/convergence.csv`, `DIR/convergence.json`,
+/// `DIR/convergence.png` and the variant scenes in `DIR/scenes/`.
+pub fn convergence(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result<String, AppError> {
+    let st = catena::convergence::study(case, opts)?;
+    std::fs::create_dir_all(out.join("scenes")).map_err(|e| AppError::io(out, e))?;
+    let stem = case
+        .file_stem()
+        .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
+    for r in &st.runs {
+        let p = out.join("scenes").join(format!(
+            "{stem}-mesh{}-dt{}.toml",
+            r.mesh_factor, r.dt_factor
+        ));
+        std::fs::write(&p, &r.scene_text).map_err(|e| AppError::io(&p, e))?;
+    }
+    let c = out.join("convergence.csv");
+    std::fs::write(&c, cv::csv(&st)).map_err(|e| AppError::io(&c, e))?;
+    let j = out.join("convergence.json");
+    std::fs::write(
+        &j,
+        serde_json::to_string_pretty(&cv::to_json(&st)).unwrap_or_default(),
+    )
+    .map_err(|e| AppError::io(&j, e))?;
+    let png = out.join("convergence.png");
+    cv::plot(&png, &st)?;
+    let mut t = cv::summary_text(&st);
+    let _ = writeln!(
+        t,
+        "wrote {}, {}, {} and the variant scenes in {}",
+        c.display(),
+        j.display(),
+        png.display(),
+        out.join("scenes").display()
+    );
+    Ok(t)
+}

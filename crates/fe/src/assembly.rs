@@ -1,0 +1,358 @@
+//! The assembly that statics and dynamics share: the structural residual and tangent of a line (the
+//! corotational elements, the submerged weight and the flexjoint), the sparse pattern with its
+//! precomputed slots, the factorisation, and the nodal results.
+//!
+//! With `q = q_b + u` (the placement's base plus displacements), the structural residual on every
+//! global dof is
+//!
+//! ```text
+//! R_s(q) = Σ_e f_e(q) + k_θ (θ_fj − θ_n) e_fj − F_dead
+//! ```
+//!
+//! and its tangent `K_s = ∂R_s/∂q` is symmetric. Statics add the seabed backbone
+//! ([`crate::statics`]); dynamics add the seabed from each node's history, Morison loads and inertia
+//! ([`crate::dynamics`], [`crate::environment`]). Nothing here allocates after [`Assembler::new`].
+//!
+//! **Nodal results.** Tension and moment at an interior node are the means of the two adjacent
+//! elements' values there; at a supported end node the tension is the magnitude of the support
+//! reaction, which the caller gives (statics: the residual there; dynamics: the residual plus the
+//! node's inertia). [`Assembler::fill_results`] is the one place that fills [`LineResults`].
+
+use crate::beam::corotational_beam_chord;
+use crate::model::LineModel;
+use crate::sparse::{LdltSolver, SolveError, SparseSym};
+
+const NONE: usize = usize::MAX;
+
+/// A fixed base configuration `q_b` (3 values per node) and its element chords, precomputed once.
+/// The unknowns are displacements `u` from it: `q = q_b + u`. Element chords are then
+/// `chord_b + (u_2 − u_1)`, resolved to the precision of `u` rather than of coordinates of order
+/// 1000 m (which would limit equilibrium to about 1e-3 N in a 0.5 m element of EA = 3.4 GN).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placement {
+    /// The base configuration, 3 per node.
+    pub base: Vec<f64>,
+    /// `(x_{e+1} − x_e, z_{e+1} − z_e)` of the base, per element.
+    pub chords: Vec<[f64; 2]>,
+}
+
+impl Placement {
+    /// The placement of a configuration `q`.
+    pub fn new(q: &[f64]) -> Self {
+        let n = q.len() / 3;
+        let chords = (0..n.saturating_sub(1))
+            .map(|e| [q[3 * e + 3] - q[3 * e], q[3 * e + 4] - q[3 * e + 1]])
+            .collect();
+        Self {
+            base: q.to_vec(),
+            chords,
+        }
+    }
+
+    /// Absolute values `q = q_b + u`.
+    pub fn absolute(&self, u: &[f64]) -> Vec<f64> {
+        self.base.iter().zip(u).map(|(b, d)| b + d).collect()
+    }
+}
+
+/// The structural assembly of one line: pattern, slots, factorisation and element results. Part of
+/// a Workspace: never saved, rebuilt from the Model.
+#[derive(Debug)]
+pub struct Assembler {
+    /// The tangent (free equations), upper triangle.
+    pub k: SparseSym,
+    solver: LdltSolver,
+    /// For element `e`, the value slot of local pair `(a, b)` (`usize::MAX` if not stored).
+    elem_slots: Vec<[usize; 36]>,
+    /// The diagonal slot of each equation.
+    diag_slots: Vec<usize>,
+    /// The off-diagonal (x, z) slot of each node, if both are free.
+    xz_slots: Vec<usize>,
+    /// Global residual `R(q)`, 3 per node.
+    pub residual: Vec<f64>,
+    /// Element axial forces, N.
+    pub axial: Vec<f64>,
+    /// Element internal end moments `(M(0), M(1))`, N·m.
+    pub moments: Vec<(f64, f64)>,
+    /// The tangent values of the last factorisation (kept so that a checkpoint can restore the
+    /// factorisation bit for bit).
+    factored: Vec<f64>,
+}
+
+impl Assembler {
+    /// Builds the pattern and the symbolic factorisation for the Model.
+    pub fn new(model: &LineModel) -> Result<Self, SolveError> {
+        let ne = model.elements.len();
+        let eq = |g: usize| model.equation[g];
+        let mut pairs = Vec::with_capacity(ne * 36);
+        for e in 0..ne {
+            for a in 0..6 {
+                for b in 0..6 {
+                    if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
+                        pairs.push((i, j));
+                    }
+                }
+            }
+        }
+        let k = SparseSym::from_couplings(model.n_eq, pairs);
+        let mut elem_slots = vec![[NONE; 36]; ne];
+        for (e, slots) in elem_slots.iter_mut().enumerate() {
+            for a in 0..6 {
+                for b in 0..6 {
+                    if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
+                        if i <= j {
+                            slots[a * 6 + b] = k.slot(i, j).unwrap_or(NONE);
+                        }
+                    }
+                }
+            }
+        }
+        let diag_slots = (0..model.n_eq)
+            .map(|i| k.slot(i, i).unwrap_or(NONE))
+            .collect();
+        let xz_slots = (0..model.nodes())
+            .map(|i| match (eq(3 * i), eq(3 * i + 1)) {
+                (Some(a), Some(b)) => k.slot(a, b).unwrap_or(NONE),
+                _ => NONE,
+            })
+            .collect();
+        let solver = LdltSolver::with_ordering(&k, true)?;
+        let n3 = 3 * model.nodes();
+        let nnz = k.values.len();
+        Ok(Self {
+            k,
+            solver,
+            elem_slots,
+            diag_slots,
+            xz_slots,
+            residual: vec![0.0; n3],
+            axial: vec![0.0; ne],
+            moments: vec![(0.0, 0.0); ne],
+            factored: vec![0.0; nnz],
+        })
+    }
+
+    /// The structural part of the residual and tangent: elements, submerged weight and flexjoint
+    /// (no seabed, no fluid). Overwrites the residual (and the tangent, with `with_k`). Allocates
+    /// nothing.
+    pub fn assemble_structure(
+        &mut self,
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        with_k: bool,
+    ) {
+        self.residual.fill(0.0);
+        if with_k {
+            self.k.clear();
+        }
+        let q = &pl.base;
+        for (e, el) in model.elements.iter().enumerate() {
+            let b = 3 * e;
+            let [cx, cz] = pl.chords[e];
+            let r = corotational_beam_chord(
+                cx + (u[b + 3] - u[b]),
+                cz + (u[b + 4] - u[b + 1]),
+                q[b + 2] + u[b + 2],
+                q[b + 5] + u[b + 5],
+                el.l0,
+                &el.section,
+                with_k,
+            );
+            for a in 0..6 {
+                self.residual[b + a] += r.force[a];
+            }
+            self.axial[e] = r.axial;
+            self.moments[e] = (r.moment1, r.moment2);
+            if with_k {
+                let slots = &self.elem_slots[e];
+                for a in 0..6 {
+                    for c in 0..6 {
+                        let s = slots[a * 6 + c];
+                        if s != NONE {
+                            self.k.values[s] += r.stiffness[a][c];
+                        }
+                    }
+                }
+            }
+        }
+        for (g, f) in model.dead_load.iter().enumerate() {
+            self.residual[g] -= f;
+        }
+        if let Some(fj) = &model.flexjoint {
+            let g = 3 * fj.node + 2;
+            self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral);
+            if with_k {
+                if let Some(eq) = model.equation[g] {
+                    self.k.values[self.diag_slots[eq]] += fj.stiffness;
+                }
+            }
+        }
+    }
+
+    /// Adds `v` to the tangent's diagonal at global dof `g` (nothing if `g` is prescribed).
+    #[inline]
+    pub fn add_dof_tangent(&mut self, model: &LineModel, g: usize, v: f64) {
+        if let Some(eq) = model.equation[g] {
+            self.k.values[self.diag_slots[eq]] += v;
+        }
+    }
+
+    /// Adds a symmetric 2×2 block `[[xx, xz], [xz, zz]]` to the tangent at node `i`'s translations.
+    #[inline]
+    pub fn add_node_block(&mut self, model: &LineModel, i: usize, xx: f64, xz: f64, zz: f64) {
+        let (ex, ez) = (model.equation[3 * i], model.equation[3 * i + 1]);
+        if let Some(a) = ex {
+            self.k.values[self.diag_slots[a]] += xx;
+        }
+        if let Some(b) = ez {
+            self.k.values[self.diag_slots[b]] += zz;
+        }
+        let s = self.xz_slots[i];
+        if s != NONE {
+            self.k.values[s] += xz;
+        }
+    }
+
+    /// Multiplies every assembled tangent value by `f`.
+    pub fn scale_tangent(&mut self, f: f64) {
+        for v in &mut self.k.values {
+            *v *= f;
+        }
+    }
+
+    /// Numeric factorisation of the tangent last assembled (its values are kept, see
+    /// [`Assembler::factored_values`]).
+    pub fn factor_tangent(&mut self) -> Result<(), SolveError> {
+        self.factored.copy_from_slice(&self.k.values);
+        self.solver.factor(&self.k)
+    }
+
+    /// The tangent values of the last factorisation.
+    pub fn factored_values(&self) -> &[f64] {
+        &self.factored
+    }
+
+    /// Factorises the tangent with the given values (a checkpoint's
+    /// [`Assembler::factored_values`]): the same factorisation, bit for bit. The values must have
+    /// the pattern's length.
+    pub fn refactor_from(&mut self, values: &[f64]) -> Result<(), SolveError> {
+        self.k.values.copy_from_slice(values);
+        self.factor_tangent()
+    }
+
+    /// The number of stored tangent values (the pattern's length).
+    pub fn pattern_len(&self) -> usize {
+        self.k.values.len()
+    }
+
+    /// Solves with the last factorisation, in place.
+    pub fn solve_tangent(&mut self, rhs: &mut [f64]) {
+        self.solver.solve_in_place(rhs);
+    }
+
+    /// Copies the residual's free equations into `out`.
+    pub fn gather(&self, model: &LineModel, out: &mut [f64]) {
+        for (g, e) in model.equation.iter().enumerate() {
+            if let Some(i) = e {
+                out[*i] = self.residual[g];
+            }
+        }
+    }
+
+    /// Tension and bending moment at node `i` from the last assembly: the means of the adjacent
+    /// elements' axial forces and of their internal moments at that node.
+    pub fn nodal_tension_moment(&self, i: usize) -> (f64, f64) {
+        let ne = self.axial.len();
+        let (mut t, mut m, mut c) = (0.0, 0.0, 0.0);
+        if i > 0 {
+            t += self.axial[i - 1];
+            m += self.moments[i - 1].1;
+            c += 1.0;
+        }
+        if i < ne {
+            t += self.axial[i];
+            m += self.moments[i].0;
+            c += 1.0;
+        }
+        (t / c, m / c)
+    }
+
+    /// Fills `out` at the configuration `u` just assembled: positions, angles, tension and moment
+    /// (see the module docs), penetration (0 without a seabed) and, from the callers, each node's
+    /// seabed force and contact mode, and the support reactions `(Rx, Rz)` at the two end nodes.
+    /// Allocates nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn fill_results(
+        &self,
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        seabed_force: impl Fn(usize) -> f64,
+        mode: impl Fn(usize) -> u8,
+        end_reaction: impl Fn(usize) -> (f64, f64),
+        out: &mut LineResults,
+    ) {
+        let n = model.nodes();
+        for i in 0..n {
+            let q = [
+                pl.base[3 * i] + u[3 * i],
+                pl.base[3 * i + 1] + u[3 * i + 1],
+                pl.base[3 * i + 2] + u[3 * i + 2],
+            ];
+            out.x[i] = q[0];
+            out.z[i] = q[1];
+            out.theta[i] = q[2];
+            (out.tension[i], out.moment[i]) = self.nodal_tension_moment(i);
+            out.penetration[i] = model.penetration(i, q[1]).unwrap_or(0.0);
+            out.seabed_force[i] = if model.seabed.is_some() {
+                seabed_force(i)
+            } else {
+                0.0
+            };
+            out.mode[i] = mode(i);
+        }
+        for i in [0, n - 1] {
+            let (rx, rz) = end_reaction(i);
+            out.tension[i] = (rx * rx + rz * rz).sqrt();
+        }
+    }
+}
+
+/// Results along the line, one value per node (node 0 at the top; the arc lengths are the Model's).
+/// The one nodal result type of statics and dynamics.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LineResults {
+    /// x, m.
+    pub x: Vec<f64>,
+    /// z, m.
+    pub z: Vec<f64>,
+    /// Tangent angle θ, rad.
+    pub theta: Vec<f64>,
+    /// Effective tension, N (end nodes: the support reaction's magnitude, inertia included).
+    pub tension: Vec<f64>,
+    /// Bending moment, N·m (negative = sag).
+    pub moment: Vec<f64>,
+    /// Invert penetration below the mudline, m (positive down, ≤ 0 clear; 0 without a seabed).
+    pub penetration: Vec<f64>,
+    /// Seabed force (resistance, buoyancy and damping) per unit length, N/m.
+    pub seabed_force: Vec<f64>,
+    /// Contact mode code (0 not in contact, 1 initial penetration, 2 uplift, 3 repenetration).
+    pub mode: Vec<u8>,
+}
+
+impl LineResults {
+    /// Results for `n` nodes, zeroed.
+    pub fn new(n: usize) -> Self {
+        Self {
+            x: vec![0.0; n],
+            z: vec![0.0; n],
+            theta: vec![0.0; n],
+            tension: vec![0.0; n],
+            moment: vec![0.0; n],
+            penetration: vec![0.0; n],
+            seabed_force: vec![0.0; n],
+            mode: vec![0; n],
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! The environment a line moves in, and the loads it makes: today the sea water (its density, the
+//! Morison coefficients and a current profile); waves will be one more optional part here.
+//!
+//! Every effect is optional: without `[hydrodynamics]` there is no [`Hydro`], and nothing here is
+//! evaluated.
+//!
+//! **Drag (Morison)** on the velocity of the water relative to the node, `r = U(z) e_x − v`, split
+//! along the node's tangent `t = (cos θ, sin θ)` into `s = r·t` and `r_n = r − s t`:
+//!
+//! ```text
+//! f = ½ρ Cd_n D |r_n| r_n + ½ρ Cd_a πD |s| s t        (per unit unstretched length)
+//! ```
+//!
+//! lumped at the nodes over their tributary lengths, like weight and mass. Its derivative with
+//! respect to the node's velocity is the damping block
+//! `C = k_n (|r_n| P + r_n r_nᵀ/|r_n|) + 2 k_a |s| t tᵀ` with `P = I − t tᵀ`; its dependence on the
+//! orientation is left out of the Jacobian.
+//!
+//! **Added mass** acts normal to the line only: the 2×2 block `m_a·L·(I − t tᵀ)` with
+//! `m_a = Ca·ρ·πD²/4` per unit length.
+
+use serde::{Deserialize, Serialize};
+
+/// Hydrodynamic coefficients and the current.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Hydro {
+    /// Sea water density, kg/m³.
+    pub water_density: f64,
+    /// Normal drag coefficient.
+    pub cd_normal: f64,
+    /// Axial drag coefficient (on the area πD per length).
+    pub cd_axial: f64,
+    /// Normal added-mass coefficient.
+    pub ca_normal: f64,
+    /// Current profile `(z, U_x)`, sorted by z (empty for none); linear in between, constant beyond.
+    pub current: Vec<(f64, f64)>,
+}
+
+/// The drag on one node and, if asked for, its velocity derivative.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct NodeDrag {
+    /// Force, N (x and z).
+    pub force: [f64; 2],
+    /// `−∂f/∂v` as `[xx, xz, zz]`, N·s/m (the damping block; zero unless asked for).
+    pub damping: [f64; 3],
+}
+
+impl Hydro {
+    /// The current speed (along +x) at height z, m/s.
+    pub fn current_at(&self, z: f64) -> f64 {
+        let c = &self.current;
+        match c.len() {
+            0 => 0.0,
+            1 => c[0].1,
+            _ => {
+                if z <= c[0].0 {
+                    return c[0].1;
+                }
+                for w in c.windows(2) {
+                    if z <= w[1].0 {
+                        let f = (z - w[0].0) / (w[1].0 - w[0].0);
+                        return w[0].1 + f * (w[1].1 - w[0].1);
+                    }
+                }
+                c[c.len() - 1].1
+            }
+        }
+    }
+
+    /// The normal added mass of a length `l` of pipe of diameter `d`, kg.
+    #[inline]
+    pub fn added_mass(&self, d: f64, l: f64) -> f64 {
+        self.ca_normal * self.water_density * std::f64::consts::PI * d * d / 4.0 * l
+    }
+
+    /// The Morison drag on a node of diameter `d` and tributary length `l`, at height `z`, with the
+    /// tangent `(tx, tz)` and the velocity `(vx, vz)`; with `with_c`, also the damping block.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn drag(
+        &self,
+        d: f64,
+        l: f64,
+        (tx, tz): (f64, f64),
+        z: f64,
+        (vx, vz): (f64, f64),
+        with_c: bool,
+    ) -> NodeDrag {
+        let kn0 = 0.5 * self.water_density * self.cd_normal;
+        let ka0 = 0.5 * self.water_density * self.cd_axial * std::f64::consts::PI;
+        let rx = self.current_at(z) - vx;
+        let rz = -vz;
+        let s = rx * tx + rz * tz;
+        let (nx, nz) = (rx - s * tx, rz - s * tz);
+        let vn = (nx * nx + nz * nz).sqrt();
+        let kn = kn0 * d * l;
+        let ka = ka0 * d * l;
+        let force = [
+            kn * vn * nx + ka * s.abs() * s * tx,
+            kn * vn * nz + ka * s.abs() * s * tz,
+        ];
+        let mut damping = [0.0; 3];
+        if with_c {
+            let mut cxx = 2.0 * ka * s.abs() * tx * tx;
+            let mut cxz = 2.0 * ka * s.abs() * tx * tz;
+            let mut czz = 2.0 * ka * s.abs() * tz * tz;
+            if vn > 0.0 {
+                cxx += kn * (vn * (1.0 - tx * tx) + nx * nx / vn);
+                cxz += kn * (-vn * tx * tz + nx * nz / vn);
+                czz += kn * (vn * (1.0 - tz * tz) + nz * nz / vn);
+            }
+            damping = [cxx, cxz, czz];
+        }
+        NodeDrag { force, damping }
+    }
+}
+
+/// The environment of a dynamic run. Absent parts are `None` and cost nothing.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Environment {
+    /// The sea water's hydrodynamics, if the scene has them.
+    pub hydro: Option<Hydro>,
+}

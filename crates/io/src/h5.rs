@@ -1,0 +1,358 @@
+//! HDF5 results. Layout (other programs read it; names are stable):
+//!
+//! - root attributes: `catena_version`, `case`, `scene` (the case file's text), `units`;
+//! - `/static/arc` (m, arc length from the top), `/static/x`, `/static/z` (m),
+//!   `/static/effective_tension` (N), `/static/bending_moment` (N·m, negative = sag),
+//!   `/static/penetration` (m, positive down, ≤ 0 clear), `/static/seabed_force` (N/m), one value per
+//!   node, node 0 at the top; each dataset has a `units` attribute;
+//! - `/dynamic/time`, `/dynamic/top_x`, `/dynamic/top_z`, `/dynamic/top_tension` (n_t);
+//!   `/dynamic/x`, `z`, `effective_tension`, `bending_moment`, `penetration`, `seabed_force` (n_t ×
+//!   n_nodes, f64) and `seabed_mode` (n_t × n_nodes, u8: 0 not in contact, 1 initial penetration,
+//!   2 uplift, 3 repenetration); `/dynamic/gauges/NAME/bending_moment` and `effective_tension` (n_t).
+//!   Written in chunks of 64 records, or every second of wall time if sooner, as the run goes, and
+//!   the file flushed each time: a run that stops keeps every record up to its last converged step,
+//!   and a run killed outright keeps `/static` and every record up to about a second before the
+//!   kill. The recorder is an observer of the run ([`Recorder`]); on restart it reopens the file,
+//!   truncates the records written after the checkpoint and continues it.
+
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::time::{Duration, Instant};
+
+use catena::observe::{at_arc, Control, Observer, RunContext, StepView};
+use catena::statics::StaticRun;
+use catena::AppError;
+use catena_fe::assembly::LineResults;
+use hdf5::types::VarLenUnicode;
+
+/// Maps an HDF5 error to an output error naming the file.
+pub fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> AppError + '_ {
+    move |e| AppError::Output {
+        path: path.to_path_buf(),
+        message: format!("HDF5: {e}"),
+    }
+}
+
+fn text(s: &str) -> VarLenUnicode {
+    // Strings with interior NULs cannot be stored; drop them.
+    VarLenUnicode::from_str(&s.replace('\0', "")).unwrap_or_default()
+}
+
+/// Writes a string attribute on a location.
+pub fn attr(loc: &hdf5::Location, name: &str, value: &str) -> hdf5::Result<()> {
+    loc.new_attr::<VarLenUnicode>()
+        .shape(())
+        .create(name)?
+        .write_scalar(&text(value))
+}
+
+/// Writes a 1-D dataset with a `units` attribute.
+pub fn vector(g: &hdf5::Group, name: &str, data: &[f64], units: &str) -> hdf5::Result<()> {
+    let ds = g.new_dataset_builder().with_data(data).create(name)?;
+    attr(&ds, "units", units)
+}
+
+/// Writes `results.h5` for a static run (created anew).
+pub fn write_static(path: &Path, run: &StaticRun) -> Result<(), AppError> {
+    let f = hdf5::File::create(path).map_err(h5err(path))?;
+    write_static_into(path, &f, run)
+}
+
+/// Writes the root attributes and the `/static` group into an open file.
+pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result<(), AppError> {
+    let err = h5err(path);
+    attr(f, "catena_version", env!("CARGO_PKG_VERSION")).map_err(&err)?;
+    attr(f, "case", &run.scene.file).map_err(&err)?;
+    attr(f, "scene", &run.scene.text).map_err(&err)?;
+    attr(f, "units", "SI: m, N, N·m, N/m, s, rad").map_err(&err)?;
+    let g = f.create_group("static").map_err(&err)?;
+    let r = &run.results;
+    for (name, data, units) in [
+        ("arc", &run.model.arc, "m"),
+        ("x", &r.x, "m"),
+        ("z", &r.z, "m"),
+        ("effective_tension", &r.tension, "N"),
+        ("bending_moment", &r.moment, "N*m"),
+        ("penetration", &r.penetration, "m"),
+        ("seabed_force", &r.seabed_force, "N/m"),
+        ("theta", &r.theta, "rad"),
+    ] {
+        vector(&g, name, data, units).map_err(&err)?;
+    }
+    f.flush().map_err(&err)?;
+    Ok(())
+}
+
+/// Streams dynamic records into `/dynamic` as an observer of the run: a record at every output
+/// interval, written in chunks of 64 records or every second of wall time, whichever comes first.
+pub struct Recorder {
+    path: PathBuf,
+    file: hdf5::File,
+    n: usize,
+    chunk: usize,
+    written: usize,
+    rows: usize,
+    series: Vec<(hdf5::Dataset, Vec<f64>)>,
+    fields: Vec<(hdf5::Dataset, Vec<f64>)>,
+    modes: (hdf5::Dataset, Vec<u8>),
+    gauge_arcs: Vec<f64>,
+    last_flush: Instant,
+}
+
+const SERIES: [(&str, &str); 4] = [
+    ("time", "s"),
+    ("top_x", "m"),
+    ("top_z", "m"),
+    ("top_tension", "N"),
+];
+const FIELDS: [(&str, &str); 6] = [
+    ("x", "m"),
+    ("z", "m"),
+    ("effective_tension", "N"),
+    ("bending_moment", "N*m"),
+    ("penetration", "m"),
+    ("seabed_force", "N/m"),
+];
+const FLUSH_EVERY: Duration = Duration::from_secs(1);
+
+impl Recorder {
+    /// Creates `path` anew with the root attributes and `/static` (flushed at once), and the empty
+    /// `/dynamic` datasets for the run's nodes and gauges.
+    pub fn create(path: &Path, statics: &StaticRun, gauges: &[String]) -> Result<Self, AppError> {
+        let err = h5err(path);
+        let file = hdf5::File::create(path).map_err(&err)?;
+        write_static_into(path, &file, statics)?;
+        let n = statics.model.nodes();
+        let chunk = 64;
+        let g = file.create_group("dynamic").map_err(&err)?;
+        let mk1 = |grp: &hdf5::Group, name: &str, units: &str| -> hdf5::Result<hdf5::Dataset> {
+            let ds = grp
+                .new_dataset::<f64>()
+                .chunk(chunk)
+                .shape(0..)
+                .create(name)?;
+            attr(&ds, "units", units)?;
+            Ok(ds)
+        };
+        for (name, units) in SERIES {
+            mk1(&g, name, units).map_err(&err)?;
+        }
+        if !gauges.is_empty() {
+            let gg = g.create_group("gauges").map_err(&err)?;
+            for name in gauges {
+                let one = gg.create_group(name).map_err(&err)?;
+                mk1(&one, "bending_moment", "N*m").map_err(&err)?;
+                mk1(&one, "effective_tension", "N").map_err(&err)?;
+            }
+        }
+        for (name, units) in FIELDS {
+            let ds = g
+                .new_dataset::<f64>()
+                .chunk((chunk, n))
+                .shape((0.., n))
+                .create(name)
+                .map_err(&err)?;
+            attr(&ds, "units", units).map_err(&err)?;
+        }
+        let md = g
+            .new_dataset::<u8>()
+            .chunk((chunk, n))
+            .shape((0.., n))
+            .create("seabed_mode")
+            .map_err(&err)?;
+        attr(
+            &md,
+            "units",
+            "0 not_in_contact, 1 initial_penetration, 2 uplift, 3 repenetration",
+        )
+        .map_err(&err)?;
+        file.flush().map_err(&err)?;
+        drop(file);
+        Self::open(path, n, gauges)
+    }
+
+    /// Opens an existing results file to continue its `/dynamic` records (a restart). Its state is
+    /// restored from the checkpoint before the run goes on ([`Observer::restore`]).
+    pub fn open(path: &Path, n: usize, gauges: &[String]) -> Result<Self, AppError> {
+        let err = h5err(path);
+        let file = hdf5::File::open_rw(path).map_err(&err)?;
+        let chunk = 64;
+        let g = file.group("dynamic").map_err(&err)?;
+        let mut series = Vec::new();
+        for (name, _) in SERIES {
+            series.push((g.dataset(name).map_err(&err)?, Vec::with_capacity(chunk)));
+        }
+        for name in gauges {
+            for what in ["bending_moment", "effective_tension"] {
+                let ds = g.dataset(&format!("gauges/{name}/{what}")).map_err(&err)?;
+                series.push((ds, Vec::with_capacity(chunk)));
+            }
+        }
+        let mut fields = Vec::new();
+        for (name, _) in FIELDS {
+            let ds = g.dataset(name).map_err(&err)?;
+            if ds.shape().get(1) != Some(&n) {
+                return Err(AppError::Output {
+                    path: path.to_path_buf(),
+                    message: format!("/dynamic/{name} is not for {n} nodes"),
+                });
+            }
+            fields.push((ds, Vec::with_capacity(chunk * n)));
+        }
+        let md = g.dataset("seabed_mode").map_err(&err)?;
+        let written = series[0].0.shape().first().copied().unwrap_or(0);
+        Ok(Self {
+            path: path.to_path_buf(),
+            file,
+            n,
+            chunk,
+            written,
+            rows: 0,
+            series,
+            fields,
+            modes: (md, Vec::with_capacity(chunk * n)),
+            gauge_arcs: Vec::new(),
+            last_flush: Instant::now(),
+        })
+    }
+
+    fn push(&mut self, t: f64, r: &LineResults, arc: &[f64]) -> Result<(), AppError> {
+        let mut k = 0;
+        for v in [t, r.x[0], r.z[0], r.tension[0]] {
+            self.series[k].1.push(v);
+            k += 1;
+        }
+        for &s in &self.gauge_arcs {
+            self.series[k].1.push(at_arc(arc, &r.moment, s));
+            self.series[k + 1].1.push(at_arc(arc, &r.tension, s));
+            k += 2;
+        }
+        for ((_, buf), src) in self.fields.iter_mut().zip([
+            &r.x,
+            &r.z,
+            &r.tension,
+            &r.moment,
+            &r.penetration,
+            &r.seabed_force,
+        ]) {
+            buf.extend_from_slice(src);
+        }
+        self.modes.1.extend_from_slice(&r.mode);
+        self.rows += 1;
+        if self.rows == self.chunk || self.last_flush.elapsed() >= FLUSH_EVERY {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Writes what is buffered and flushes the file.
+    pub fn flush(&mut self) -> Result<(), AppError> {
+        self.last_flush = Instant::now();
+        if self.rows == 0 {
+            return Ok(());
+        }
+        let err = h5err(&self.path);
+        let (k, m, n) = (self.written, self.rows, self.n);
+        for (ds, buf) in &mut self.series {
+            ds.resize(k + m).map_err(&err)?;
+            ds.write_slice(&buf[..], k..k + m).map_err(&err)?;
+            buf.clear();
+        }
+        let shape_err = |e: ndarray::ShapeError| AppError::Output {
+            path: self.path.clone(),
+            message: e.to_string(),
+        };
+        for (ds, buf) in &mut self.fields {
+            ds.resize((k + m, n)).map_err(&err)?;
+            let view = ndarray::ArrayView2::from_shape((m, n), &buf[..]).map_err(shape_err)?;
+            ds.write_slice(&view, (k..k + m, ..)).map_err(&err)?;
+            buf.clear();
+        }
+        let (ds, buf) = &mut self.modes;
+        ds.resize((k + m, n)).map_err(&err)?;
+        let view = ndarray::ArrayView2::from_shape((m, n), &buf[..]).map_err(shape_err)?;
+        ds.write_slice(&view, (k..k + m, ..)).map_err(&err)?;
+        buf.clear();
+        self.written += m;
+        self.rows = 0;
+        self.file.flush().map_err(&err)?;
+        Ok(())
+    }
+
+    /// Records written so far (flushed or not).
+    pub fn records(&self) -> usize {
+        self.written + self.rows
+    }
+
+    /// Cuts every `/dynamic` dataset back to `records` records (a restart drops what the
+    /// interrupted run wrote after its checkpoint).
+    fn truncate(&mut self, records: usize) -> Result<(), AppError> {
+        let err = h5err(&self.path);
+        if records > self.written {
+            return Err(AppError::Output {
+                path: self.path.clone(),
+                message: format!(
+                    "the file holds {} records, the checkpoint expects {records}",
+                    self.written
+                ),
+            });
+        }
+        for (ds, _) in &self.series {
+            ds.resize(records).map_err(&err)?;
+        }
+        for (ds, _) in &self.fields {
+            ds.resize((records, self.n)).map_err(&err)?;
+        }
+        self.modes.0.resize((records, self.n)).map_err(&err)?;
+        self.written = records;
+        self.file.flush().map_err(&err)?;
+        Ok(())
+    }
+}
+
+impl Observer for Recorder {
+    fn name(&self) -> &'static str {
+        "hdf5"
+    }
+
+    fn start(
+        &mut self,
+        ctx: &RunContext<'_>,
+        first: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        self.gauge_arcs = ctx.spec.gauges.iter().map(|g| g.arc).collect();
+        if !restarted {
+            self.push(first.t, first.results, &ctx.model.line.arc)?;
+        }
+        Ok(())
+    }
+
+    fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        if s.record {
+            self.push(s.t, s.results, &ctx.model.line.arc)?;
+        }
+        Ok(Control::Continue)
+    }
+
+    fn finish(
+        &mut self,
+        _: &RunContext<'_>,
+        _: Option<&catena::observe::Stop>,
+    ) -> Result<(), AppError> {
+        self.flush()
+    }
+
+    fn save(&mut self) -> Result<serde_json::Value, AppError> {
+        self.flush()?;
+        Ok(serde_json::json!({ "records": self.written }))
+    }
+
+    fn restore(&mut self, v: &serde_json::Value) -> Result<(), String> {
+        let records = v["records"].as_u64().ok_or_else(|| {
+            "it holds no record count for results.h5 (was it written with an HDF5 recorder?)"
+                .to_string()
+        })?;
+        self.truncate(records as usize).map_err(|e| e.to_string())
+    }
+}

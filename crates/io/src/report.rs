@@ -1,0 +1,270 @@
+//! Summaries of runs, as text for the terminal and as JSON for `summary.json`. Values that were
+//! never measured (a run stopped before its envelope window) are JSON `null`, never 0.
+
+use std::fmt::Write as _;
+
+use catena::observe::Stop;
+use catena::run::{self, DynamicRun};
+use catena::statics::StaticRun;
+use serde_json::{json, Value};
+
+/// A number, or `null` if it is not finite (not measured).
+pub fn num(v: f64) -> Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        Value::Null
+    }
+}
+
+fn opt(v: Option<f64>) -> Value {
+    v.map_or(Value::Null, num)
+}
+
+fn nums(v: &[f64]) -> Vec<Value> {
+    v.iter().map(|x| num(*x)).collect()
+}
+
+/// The summary as text.
+pub fn static_text(run: &StaticRun) -> String {
+    let s = &run.summary;
+    let mut t = String::new();
+    let _ = writeln!(t, "static: {} ({})", run.scene.title, run.scene.file);
+    let _ = writeln!(
+        t,
+        "  {} nodes, {} elements; Newton: {} iterations, {} continuation steps, relative residual {:.2e}; {:.1} ms",
+        run.model.nodes(),
+        run.model.elements.len(),
+        run.report.iterations,
+        run.report.steps.max(1),
+        run.report.residual,
+        run.wall_seconds * 1e3
+    );
+    let _ = writeln!(
+        t,
+        "  top tension            {:>12.2} kN",
+        s.top_tension / 1e3
+    );
+    let _ = writeln!(
+        t,
+        "  horizontal tension     {:>12.2} kN",
+        s.horizontal_tension / 1e3
+    );
+    let _ = writeln!(
+        t,
+        "  top angle              {:>12.3} deg from vertical",
+        s.top_angle_from_vertical.to_degrees()
+    );
+    match s.touchdown_arc {
+        Some(a) => {
+            let _ = writeln!(t, "  touchdown arc length   {a:>12.2} m");
+        }
+        None => {
+            let _ = writeln!(
+                t,
+                "  touchdown              none (the line does not touch the seabed)"
+            );
+        }
+    }
+    let _ = writeln!(
+        t,
+        "  max sag moment         {:>12.2} kN·m at arc length {:.2} m",
+        s.max_sag_moment.0 / 1e3,
+        s.max_sag_moment.1
+    );
+    if let Some(m) = s.touchdown_moment {
+        let _ = writeln!(t, "  moment at touchdown    {:>12.2} kN·m", m / 1e3);
+    }
+    if run.model.seabed.is_some() {
+        // Far field: 95 % of the way from the top, away from touchdown and from the anchor pin.
+        let i = run.results.penetration.len().saturating_sub(1) * 95 / 100;
+        let _ = writeln!(
+            t,
+            "  far-field penetration  {:>12.5} m at arc length {:.1} m",
+            run.results.penetration[i], run.model.arc[i]
+        );
+    }
+    t
+}
+
+/// The summary as JSON.
+pub fn static_json(run: &StaticRun) -> serde_json::Value {
+    let s = &run.summary;
+    json!({
+        "catena_version": catena::checkpoint::VERSION,
+        "case": run.scene.file,
+        "title": run.scene.title,
+        "units": "SI (N, m, N·m, rad; angles in deg where the key says so)",
+        "static": {
+            "nodes": run.model.nodes(),
+            "elements": run.model.elements.len(),
+            "top_tension": s.top_tension,
+            "horizontal_tension": s.horizontal_tension,
+            "top_angle_from_vertical_deg": s.top_angle_from_vertical.to_degrees(),
+            "touchdown_arc": s.touchdown_arc,
+            "max_sag_moment": s.max_sag_moment.0,
+            "max_sag_moment_arc": s.max_sag_moment.1,
+            "touchdown_moment": s.touchdown_moment,
+            "newton_iterations": run.report.iterations,
+            "continuation_steps": run.report.steps.max(1),
+            "step_cuts": run.report.cuts,
+            "relative_residual": run.report.residual,
+            "wall_seconds": run.wall_seconds,
+        }
+    })
+}
+
+/// The dynamic run's summary as JSON (the static summary with a `dynamic` object).
+pub fn dynamic_json(r: &DynamicRun) -> Value {
+    let mut js = static_json(&r.statics);
+    let (mr, at, tmin, tmax) = run::key_numbers(r);
+    let gauges: Vec<Value> = r
+        .spec
+        .gauges
+        .iter()
+        .zip(&r.gauges.traces)
+        .map(|(g, tr)| {
+            let [(rmin, rmax), (fmin, fmax)] = tr.by_direction;
+            json!({
+                "name": g.name, "arc": g.arc,
+                "moment_min": opt(tr.moment_extremes.0),
+                "moment_max": opt(tr.moment_extremes.1),
+                "moment_min_top_rising": opt(rmin), "moment_max_top_rising": opt(rmax),
+                "moment_min_top_falling": opt(fmin), "moment_max_top_falling": opt(fmax),
+            })
+        })
+        .collect();
+    let (reason, failed) = match &r.stop {
+        None => (Value::Null, Value::Null),
+        Some(Stop::Failed(e)) => {
+            let failed = match e {
+                catena_fe::dynamics::StepError::NotConverged {
+                    t,
+                    step,
+                    dt,
+                    cuts,
+                    iterations,
+                    residual,
+                    node,
+                    arc,
+                    ..
+                } => json!({
+                    "t": t, "step": step, "dt": dt, "step_cuts": cuts,
+                    "newton_iterations": iterations, "relative_residual": num(*residual),
+                    "node": node, "arc": arc,
+                }),
+                catena_fe::dynamics::StepError::Solve(_) => Value::Null,
+            };
+            (json!(e.to_string()), failed)
+        }
+        Some(s) => (json!(s.to_string()), Value::Null),
+    };
+    let e = &r.envelopes;
+    js["dynamic"] = json!({
+        "completed": r.completed(),
+        "stop_reason": reason,
+        "failed_step": failed,
+        "duration": r.spec.duration,
+        "time_reached": r.t_reached,
+        "time_step": r.spec.dt,
+        "scheme": r.spec.settings.scheme.to_string(),
+        "steps": r.steps,
+        "newton_iterations": r.iterations,
+        "iterations_per_step": if r.steps > 0 { num(r.iterations as f64 / r.steps as f64) } else { Value::Null },
+        "step_cuts": r.cuts,
+        "predictor_retries": r.retries,
+        "wall_seconds": r.wall_seconds,
+        "envelope_start": r.spec.envelope_start,
+        "envelope_steps": e.samples,
+        "max_moment_range": num(mr),
+        "max_moment_range_arc": num(at),
+        "top_tension_min": num(tmin),
+        "top_tension_max": num(tmax),
+        "top_tension_range": num(tmax - tmin),
+        "gauges": gauges,
+        "envelopes": {
+            "arc": r.model.line.arc,
+            "moment_min": nums(&e.moment_min),
+            "moment_max": nums(&e.moment_max),
+            "tension_min": nums(&e.tension_min),
+            "tension_max": nums(&e.tension_max),
+            "moment_range": nums(&e.moment_range()),
+            "tension_range": nums(&e.tension_range()),
+            "penetration_max": nums(&e.penetration_max),
+            "penetration_min": nums(&e.penetration_min),
+        }
+    });
+    js
+}
+
+fn kn(v: f64, scale: f64) -> String {
+    if v.is_finite() {
+        format!("{:.2}", v * scale)
+    } else {
+        "n/a".into()
+    }
+}
+
+/// The dynamic run's summary as text.
+pub fn dynamic_text(r: &DynamicRun) -> String {
+    let mut t = static_text(&r.statics);
+    let (mr, at, tmin, tmax) = run::key_numbers(r);
+    let _ = writeln!(
+        t,
+        "dynamic: {:.1} of {:.1} s in {} steps of {} s ({}); {} Newton iterations ({:.2} per step), {} step cuts, {} predictor retries; {:.2} s wall",
+        r.t_reached,
+        r.spec.duration,
+        r.steps,
+        r.spec.dt,
+        r.spec.settings.scheme,
+        r.iterations,
+        r.iterations as f64 / r.steps.max(1) as f64,
+        r.cuts,
+        r.retries,
+        r.wall_seconds
+    );
+    let _ = writeln!(t, "  from t = {} s:", r.spec.envelope_start);
+    let _ = writeln!(
+        t,
+        "  top tension            {:>10} to {} kN (range {} kN)",
+        kn(tmin, 1e-3),
+        kn(tmax, 1e-3),
+        kn(tmax - tmin, 1e-3)
+    );
+    let _ = writeln!(
+        t,
+        "  max moment range       {:>10} kN·m at arc length {}",
+        kn(mr, 1e-3),
+        if at.is_finite() {
+            format!("{at:.2} m")
+        } else {
+            "n/a".into()
+        }
+    );
+    for (g, tr) in r.spec.gauges.iter().zip(&r.gauges.traces) {
+        let f = |v: Option<f64>| kn(v.unwrap_or(f64::NAN), 1e-3);
+        let _ = writeln!(
+            t,
+            "  gauge {} (arc {:.2} m): moment {} to {} kN·m",
+            g.name,
+            g.arc,
+            f(tr.moment_extremes.0),
+            f(tr.moment_extremes.1)
+        );
+        let [(rmin, rmax), (fmin, fmax)] = tr.by_direction;
+        if rmin.is_some() || fmin.is_some() {
+            let _ = writeln!(
+                t,
+                "    top rising (pull-up): {} to {} kN·m; top falling (lay-down): {} to {} kN·m",
+                f(rmin),
+                f(rmax),
+                f(fmin),
+                f(fmax)
+            );
+        }
+    }
+    if let Some(s) = &r.stop {
+        let _ = writeln!(t, "  STOPPED EARLY at t = {} s: {s}", r.t_reached);
+    }
+    t
+}
