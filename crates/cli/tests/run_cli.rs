@@ -83,7 +83,8 @@ fn run_writes_dynamic_layout() {
 /// A run whose steps cannot converge (one Newton iteration allowed) cuts the step, then stops with
 /// an error that says when (t, step, iteration), where (node, arc length) and by how much (the
 /// residual), and keeps its results: the file has the statics and every record up to the last
-/// converged step, and summary.json says the run did not complete.
+/// converged step, and summary.json says the run did not complete, how far it got and what the
+/// failing step took.
 #[test]
 fn failed_run_reports_context_and_keeps_results() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dyn_fail");
@@ -118,5 +119,146 @@ fn failed_run_reports_context_and_keeps_results() {
     let js: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
             .expect("json");
-    assert_eq!(js["dynamic"]["completed"], false);
+    let d = &js["dynamic"];
+    assert_eq!(d["completed"], false);
+    // The summary of a stopped run: the time it reached, the failing step's cuts and iterations,
+    // and null (not 0) for what it never measured.
+    assert_eq!(d["time_reached"], 0.0);
+    assert_eq!(d["steps"], 0);
+    assert_eq!(d["failed_step"]["step"], 1);
+    assert_eq!(d["failed_step"]["step_cuts"], 2);
+    assert!(
+        d["failed_step"]["newton_iterations"]
+            .as_u64()
+            .expect("iterations")
+            >= 3
+    );
+    assert!(d["stop_reason"]
+        .as_str()
+        .expect("reason")
+        .contains("did not converge"));
+    assert!(d["iterations_per_step"].is_null());
+    assert!(d["max_moment_range"].is_finite_or_null());
+}
+
+trait FiniteOrNull {
+    fn is_finite_or_null(&self) -> bool;
+}
+
+impl FiniteOrNull for serde_json::Value {
+    fn is_finite_or_null(&self) -> bool {
+        self.is_null() || self.as_f64().is_some_and(f64::is_finite)
+    }
+}
+
+fn rq_heave_text() -> String {
+    heave_text().edit(
+        "model = \"linear\"\nstiffness = 100.0e3           # N/m/m², no friction, no damping",
+        "model = \"randolph-quiggin\"\nsu0 = 1000.0\nsu_gradient = 1300.0\na = 6.0\nb = 0.25\nk_max = 200.0\nf_suc = 0.6\nlambda_suc = 1.0\nlambda_rep = 0.3",
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let p = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("run_cli")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&p);
+    std::fs::create_dir_all(&p).expect("dir");
+    p
+}
+
+/// Every dataset under `/dynamic` (gauges included) of a results file, by name.
+fn dynamic_datasets(path: &Path) -> Vec<(String, Vec<f64>)> {
+    let f = hdf5::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut out = Vec::new();
+    let g = f.group("dynamic").expect("dynamic");
+    for name in g.member_names().expect("names") {
+        if let Ok(ds) = g.dataset(&name) {
+            let v: Vec<f64> = if name == "seabed_mode" {
+                ds.read_raw::<u8>()
+                    .expect("modes")
+                    .into_iter()
+                    .map(f64::from)
+                    .collect()
+            } else {
+                ds.read_raw::<f64>().expect("data")
+            };
+            out.push((name, v));
+        }
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).expect("json"))
+        .expect("json")
+}
+
+/// A restart into the same `--out` continues `results.h5`: a run stopped at step 120 (checkpoints
+/// every 37 steps, so the last one is at step 111 and the file holds 9 records beyond it) and then
+/// restarted from its checkpoint ends with a results file whose every `/dynamic` dataset is
+/// bit-identical to that of the uninterrupted run, and a summary (envelopes, gauges, extremes,
+/// iteration counts since the restart aside) identical too.
+#[test]
+fn restart_into_the_same_directory_continues_the_results_file() {
+    let dir = tmp("restart");
+    let case = dir.join("rq-heave.toml");
+    std::fs::write(
+        &case,
+        rq_heave_text()
+            .edit("duration = 100.0", "duration = 10.0")
+            .edit("envelope_start = 50.0", "envelope_start = 2.0"),
+    )
+    .expect("case");
+    let (full, cut) = (dir.join("full"), dir.join("cut"));
+    commands::run(&case, &full, &RunCommandOptions::default()).expect("uninterrupted");
+    commands::run(
+        &case,
+        &cut,
+        &RunCommandOptions {
+            checkpoint_every: Some(37),
+            stop_after: Some(120),
+            ..RunCommandOptions::default()
+        },
+    )
+    .expect("stopped at 120");
+    assert_eq!(summary(&cut)["dynamic"]["completed"], false);
+    assert_eq!(summary(&cut)["dynamic"]["steps"], 120);
+    commands::run(
+        &case,
+        &cut,
+        &RunCommandOptions {
+            checkpoint_every: Some(37),
+            restart: Some(cut.join("checkpoint.json")),
+            ..RunCommandOptions::default()
+        },
+    )
+    .expect("restarted");
+    let (a, b) = (
+        dynamic_datasets(&full.join("results.h5")),
+        dynamic_datasets(&cut.join("results.h5")),
+    );
+    assert_eq!(a.len(), b.len());
+    for ((na, va), (nb, vb)) in a.iter().zip(&b) {
+        assert_eq!(na, nb);
+        assert_eq!(va.len(), vb.len(), "{na}: length");
+        assert!(va == vb, "{na}: values differ");
+    }
+    let time = a.iter().find(|(n, _)| n == "time").expect("time");
+    assert_eq!(time.1.len(), 201, "every record of the 10 s run");
+    let (sa, sb) = (summary(&full), summary(&cut));
+    assert_eq!(sb["dynamic"]["completed"], true);
+    for key in [
+        "envelopes",
+        "gauges",
+        "top_tension_min",
+        "top_tension_max",
+        "max_moment_range",
+        "steps",
+        "time_reached",
+        "envelope_steps",
+    ] {
+        assert_eq!(sa["dynamic"][key], sb["dynamic"][key], "{key}");
+    }
 }

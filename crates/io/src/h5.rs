@@ -167,15 +167,24 @@ impl Recorder {
         )
         .map_err(&err)?;
         file.flush().map_err(&err)?;
-        drop(file);
-        Self::open(path, n, gauges)
+        drop((g, md));
+        Self::from_file(path, file, n, gauges)
     }
 
     /// Opens an existing results file to continue its `/dynamic` records (a restart). Its state is
     /// restored from the checkpoint before the run goes on ([`Observer::restore`]).
     pub fn open(path: &Path, n: usize, gauges: &[String]) -> Result<Self, AppError> {
+        let file = hdf5::File::open_rw(path).map_err(h5err(path))?;
+        Self::from_file(path, file, n, gauges)
+    }
+
+    fn from_file(
+        path: &Path,
+        file: hdf5::File,
+        n: usize,
+        gauges: &[String],
+    ) -> Result<Self, AppError> {
         let err = h5err(path);
-        let file = hdf5::File::open_rw(path).map_err(&err)?;
         let chunk = 64;
         let g = file.group("dynamic").map_err(&err)?;
         let mut series = Vec::new();
