@@ -1,7 +1,7 @@
 //! Closed-form solutions: the catenary in its three forms (touching down on a flat rigid seabed,
 //! elastic with a stretched grounded part, and hanging free between two points), the touchdown
 //! boundary-layer moment, and helpers. Used to seed static solves and as test anchors
-//! (`shared/spec/cases.md` §5).
+//! (`docs/cases.md` §5).
 //!
 //! Frame: `x` horizontal from the anchor towards the top, `z` up. Arc length `s` from the top.
 //! Angles `θ` are those of the tangent pointing down the line (towards the anchor), counter-clockwise

@@ -1,4 +1,4 @@
-//! Verification of the static solver against the analytical anchors of `shared/spec/cases.md` §5.
+//! Verification of the static solver against the analytical anchors of `docs/cases.md` §5.
 //! Each test states its source and tolerance.
 
 use catena_fe::analytical::{touchdown_moment, ElasticTouchdownCatenary, TouchdownCatenary};

@@ -18,7 +18,7 @@
 //!
 //! Modules:
 //! - [`rq`]: the Randolph & Quiggin (2009) non-linear hysteretic law (OMAE2009-79259), read exactly as
-//!   `shared/spec/seabed-model.md` fixes it;
+//!   `docs/seabed-model.md` fixes it;
 //! - [`linear`]: the linear elastic tensionless seabed, `P = k·D·z`, with optional damping;
 //! - [`buoyancy`]: the soil buoyancy force of the paper's eq. 15;
 //! - [`law`]: [`law::Seabed`], the law a scene chose plus optional buoyancy, behind one interface,

@@ -1,6 +1,6 @@
 //! The Randolph & Quiggin (2009) non-linear hysteretic seabed law (OMAE2009-79259).
 //!
-//! Read exactly as `shared/spec/seabed-model.md` fixes it; equation numbers are the paper's.
+//! Read exactly as `docs/seabed-model.md` fixes it; equation numbers are the paper's.
 //! Notation: `ζ = z·Kmax/D`; `k = Kmax/D` so that `dζ/dz = k`.
 //!
 //! **Ultimate limits (eqs 1–2).**

@@ -1,4 +1,4 @@
-//! The public checks of `shared/spec/seabed-model.md` ("Checks any implementation must pass") and
+//! The public checks of `docs/seabed-model.md` ("Checks any implementation must pass") and
 //! the numbers the paper states, each with its tolerance.
 
 use catena_seabed::element_test::{self, Control, Leg, Target};
