@@ -43,6 +43,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::error::AppError;
+use crate::observe::Stop;
 use crate::run::{self, DynamicRun, RunOptions};
 use crate::scene::edit::Edit;
 use crate::scene::riser::RiserScene;
@@ -127,7 +128,7 @@ pub struct VariantRun {
     /// The key outputs, in the units of their definitions (NaN if the run failed).
     pub values: Vec<f64>,
     /// Why the run stopped early, if it did.
-    pub error: Option<String>,
+    pub error: Option<Stop>,
     /// The variant scene's TOML.
     pub scene_text: String,
 }
@@ -369,7 +370,7 @@ fn run_variant(
         step_cuts: r.cuts,
         wall_seconds: wall,
         values,
-        error: r.stop.as_ref().map(ToString::to_string),
+        error: r.stop.clone(),
         scene_text,
     })
 }

@@ -82,7 +82,7 @@ pub fn to_json(st: &Study) -> serde_json::Value {
             "newton_iterations": r.newton_iterations, "step_cuts": r.step_cuts,
             "wall_seconds": r.wall_seconds,
             "values": r.values.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-            "error": r.error,
+            "error": r.error.as_ref().map(ToString::to_string),
         })).collect::<Vec<_>>(),
         "outputs": st.outputs.iter().zip(&st.analyses).map(|(o, (m, d))| json!({
             "id": o.id, "label": o.label, "unit": o.unit,
