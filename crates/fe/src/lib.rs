@@ -9,6 +9,8 @@
 //!   nodal results ([`assembly::LineResults`]);
 //! - [`environment`]: the sea (hydrodynamics, current) and the loads it makes on the line;
 //! - [`motion`]: prescribed motion of the top end;
+//! - [`waves`]: JONSWAP and Airy waves, their synthesis and kinematics (Wheeler stretching);
+//! - [`vessel`]: vessel motion from RAOs on the same wave train, transferred to the hang-off;
 //! - [`statics`]: the static Newton solve from a catenary seed;
 //! - [`dynamics`]: HHT-α/Newmark time stepping on a [`dynamics::DynamicModel`];
 //! - [`analytical`]: closed-form solutions (catenaries, the touchdown boundary layer, the elastica),
@@ -23,3 +25,5 @@ pub mod model;
 pub mod motion;
 pub mod sparse;
 pub mod statics;
+pub mod vessel;
+pub mod waves;
