@@ -109,6 +109,7 @@ pub fn prepare(st: &StaticRun) -> Result<(DynamicSpec, DynamicModel), AppError> 
         placement: st.placement.clone(),
         environment: spec.environment.clone(),
         motion: spec.motion.clone(),
+        vessel: spec.vessel.clone(),
         settings: spec.settings,
     };
     Ok((spec, model))

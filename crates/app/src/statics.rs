@@ -1,6 +1,7 @@
 //! The static configuration of a riser or pipeline on the seabed, with the seabed in
-//! initial-penetration mode only (the paper's prescription): the catenary seed, the Newton solve
-//! and, with a flexjoint whose neutral angle the scene leaves to the statics, a second solve with the
+//! initial-penetration mode only (the paper's prescription) and the steady current's drag if the
+//! scene has one (so that the dynamics start in equilibrium with it): the catenary seed, the Newton
+//! solve and, with a flexjoint whose neutral angle the scene leaves to the statics, a second solve with the
 //! neutral angle at the static top angle (zero static flexjoint moment).
 //!
 //! The Model is immutable: the second solve uses a new Model
@@ -76,11 +77,14 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
         max_iter: scene.statics.max_iterations,
         ..StaticOptions::default()
     };
-    let mut report = statics::solve(&model, &placement, &mut u, &mut ws, &opts).map_err(st_err)?;
+    let current = scene.hydro.as_ref();
+    let mut report =
+        statics::solve_in(&model, current, &placement, &mut u, &mut ws, &opts).map_err(st_err)?;
     if model.flexjoint.is_some() && given_neutral.is_none() {
         // Neutral angle = the static departure angle: zero static flexjoint moment.
         model = model.with_flexjoint_neutral(placement.base[2] + u[2]);
-        let again = statics::solve(&model, &placement, &mut u, &mut ws, &opts).map_err(st_err)?;
+        let again = statics::solve_in(&model, current, &placement, &mut u, &mut ws, &opts)
+            .map_err(st_err)?;
         report.iterations += again.iterations;
         report.residual = again.residual;
         report.assembly_seconds += again.assembly_seconds;
@@ -90,10 +94,12 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
     let results = statics::line_results(&model, &placement, &u, &mut ws, |_, p| {
         seabed.map_or(0.0, |s| s.seabed.backbone(p).total())
     });
+    let res = &ws.asm.residual;
+    let n3 = res.len();
     let summary = statics::summarise(
         &model.arc,
         &results,
-        (ws.asm.residual[0], ws.asm.residual[1]),
+        [(res[0], res[1]), (res[n3 - 3], res[n3 - 2])],
     );
     Ok(StaticRun {
         scene,

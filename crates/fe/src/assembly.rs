@@ -133,13 +133,16 @@ impl Assembler {
     }
 
     /// The structural part of the residual and tangent: elements, submerged weight and flexjoint
-    /// (no seabed, no fluid). Overwrites the residual (and the tangent, with `with_k`). Allocates
-    /// nothing.
+    /// (no seabed, no fluid). Overwrites the residual (and the tangent, with `with_k`). The
+    /// flexjoint's vessel-side reference is turned by `fj_rotation` (rad, counter-clockwise in the
+    /// x–z plane: the vessel's rotation; 0 in statics): its moment is
+    /// `−k_θ(θ − θ_neutral − fj_rotation)`. Allocates nothing.
     pub fn assemble_structure(
         &mut self,
         model: &LineModel,
         pl: &Placement,
         u: &[f64],
+        fj_rotation: f64,
         with_k: bool,
     ) {
         self.residual.fill(0.0);
@@ -181,7 +184,7 @@ impl Assembler {
         }
         if let Some(fj) = &model.flexjoint {
             let g = 3 * fj.node + 2;
-            self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral);
+            self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral - fj_rotation);
             if with_k {
                 if let Some(eq) = model.equation[g] {
                     self.k.values[self.diag_slots[eq]] += fj.stiffness;

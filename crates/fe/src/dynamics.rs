@@ -64,8 +64,10 @@ use serde::{Deserialize, Serialize};
 use crate::assembly::{Assembler, LineResults, Placement};
 use crate::environment::Environment;
 use crate::model::LineModel;
-use crate::motion::TopMotion;
+use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
+use crate::vessel::Vessel;
+use crate::waves::Kinematics;
 
 /// The time integration scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -127,8 +129,49 @@ pub struct DynamicModel {
     pub environment: Environment,
     /// The top end's prescribed motion, if any.
     pub motion: Option<TopMotion>,
+    /// The vessel carrying the top end, moved by the waves, if any (added to `motion`).
+    pub vessel: Option<Vessel>,
     /// The solver settings.
     pub settings: DynamicSettings,
+}
+
+/// The top end's prescribed state at an instant: displacement, velocity and acceleration from its
+/// static position `(x, z)`, and the vessel's pitch (rad, positive bow down).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TopState {
+    /// Displacement, m.
+    pub d: [f64; 2],
+    /// Velocity, m/s.
+    pub v: [f64; 2],
+    /// Acceleration, m/s².
+    pub a: [f64; 2],
+    /// Vessel pitch, rad (0 without a vessel).
+    pub pitch: f64,
+}
+
+impl DynamicModel {
+    /// The top end's prescribed state at `t`: the prescribed motion plus the vessel's motion at the
+    /// hang-off, or `None` when the top does not move.
+    pub fn top_at(&self, t: f64) -> Option<TopState> {
+        if self.motion.is_none() && self.vessel.is_none() {
+            return None;
+        }
+        let mut s = TopState::default();
+        if let Some(m) = &self.motion {
+            let (d, v, a): TopKinematics = m.at(t);
+            (s.d, s.v, s.a) = (d, v, a);
+        }
+        if let (Some(vessel), Some(waves)) = (&self.vessel, &self.environment.waves) {
+            let vm = vessel.motion(waves, t);
+            for k in 0..2 {
+                s.d[k] += vm.displacement[k];
+                s.v[k] += vm.velocity[k];
+                s.a[k] += vm.acceleration[k];
+            }
+            s.pitch = vm.motions[2];
+        }
+        Some(s)
+    }
 }
 
 /// Everything a restart needs.
@@ -275,6 +318,11 @@ pub struct DynWorkspace {
     a: Vec<f64>,
     /// The State at the start of the step (restored if the step fails).
     saved: DynState,
+    /// Water kinematics at each node for the step under way (evaluated once per attempt at the
+    /// predicted positions; `None` above the surface or without waves).
+    wave_kin: Vec<Option<Kinematics>>,
+    /// The flexjoint's vessel-side rotation for the step under way, rad.
+    fj_rotation: f64,
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
     /// of the next step of the same Δt).
     factored_dt: Option<f64>,
@@ -311,6 +359,8 @@ impl DynWorkspace {
                 history: vec![untouched; n],
             },
             factored_dt: None,
+            wave_kin: vec![None; n],
+            fj_rotation: 0.0,
         })
     }
 
@@ -434,7 +484,7 @@ fn forces_at_iterate(
     let (model, pl) = (&dm.line, &dm.placement);
     let (u, v) = (&ws.u, &ws.v);
     let asm = &mut ws.asm;
-    asm.assemble_structure(model, pl, u, with_k);
+    asm.assemble_structure(model, pl, u, ws.fj_rotation, with_k);
     if with_k {
         asm.scale_tangent(k_scale);
     }
@@ -463,16 +513,28 @@ fn forces_at_iterate(
             let th = pl.base[3 * i + 2] + u[3 * i + 2];
             let (ty, tx) = th.sin_cos();
             let z = pl.base[3 * i + 1] + u[3 * i + 1];
+            let kin = ws.wave_kin[i];
             let d = h.drag(
                 model.node_od[i],
                 model.tributary[i],
                 (tx, ty),
                 z,
                 (v[3 * i], v[3 * i + 1]),
+                kin.map(|k| k.velocity),
                 with_k,
             );
             asm.residual[3 * i] -= d.force[0];
             asm.residual[3 * i + 1] -= d.force[1];
+            if let Some(k) = kin {
+                let f = h.wave_inertia(
+                    model.node_od[i],
+                    model.tributary[i],
+                    (tx, ty),
+                    k.acceleration,
+                );
+                asm.residual[3 * i] -= f[0];
+                asm.residual[3 * i + 1] -= f[1];
+            }
             if with_k {
                 let f = k_scale * c_v;
                 let [cxx, cxz, czz] = d.damping;
@@ -481,6 +543,22 @@ fn forces_at_iterate(
         }
     }
     ws.f.copy_from_slice(&asm.residual);
+}
+
+/// The water kinematics at each node at `t`, at the positions of the workspace's iterate (the
+/// predictor), into `ws.wave_kin`. Nothing without waves (or without hydrodynamics to load the
+/// line with them).
+fn wave_kinematics(dm: &DynamicModel, t: f64, ws: &mut DynWorkspace) {
+    let env = &dm.environment;
+    let (Some(waves), Some(_)) = (&env.waves, &env.hydro) else {
+        return;
+    };
+    let pl = &dm.placement;
+    for (i, k) in ws.wave_kin.iter_mut().enumerate() {
+        let x = pl.base[3 * i] + ws.u[3 * i];
+        let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - env.water_level;
+        *k = waves.kinematics(x, z, t);
+    }
 }
 
 /// Lumped mass at the orientation `u` (added mass normal to the tangent there).
@@ -535,7 +613,11 @@ fn attempt(
     for g in 0..3 * n {
         ws.u[g] = state.u[g] + dt * state.v[g] + c_pred * state.a[g];
     }
-    let prescribed = dm.motion.as_ref().map(|m| m.at(t1));
+    let top = dm.top_at(t1);
+    let prescribed = top.map(|s| (s.d, s.v, s.a));
+    // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.
+    ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
+    wave_kinematics(dm, t1, ws);
     let c_m = 1.0 / (beta * dt * dt);
     let c_v = gamma / (beta * dt);
     let mut last = (0, f64::INFINITY, 0);

@@ -1,11 +1,12 @@
-//! The environment a line moves in, and the loads it makes: today the sea water (its density, the
-//! Morison coefficients and a current profile); waves will be one more optional part here.
+//! The environment a line moves in, and the loads it makes: the sea water (its density, the Morison
+//! coefficients and a current profile) and, optionally, waves ([`crate::waves`]).
 //!
 //! Every effect is optional: without `[hydrodynamics]` there is no [`Hydro`], and nothing here is
 //! evaluated.
 //!
-//! **Drag (Morison)** on the velocity of the water relative to the node, `r = U(z) e_x − v`, split
-//! along the node's tangent `t = (cos θ, sin θ)` into `s = r·t` and `r_n = r − s t`:
+//! **Drag (Morison)** on the velocity of the water relative to the node, `r = U(z) e_x + u_w − v`
+//! (current, wave particle velocity, node velocity), split along the node's tangent
+//! `t = (cos θ, sin θ)` into `s = r·t` and `r_n = r − s t`:
 //!
 //! ```text
 //! f = ½ρ Cd_n D |r_n| r_n + ½ρ Cd_a πD |s| s t        (per unit unstretched length)
@@ -18,8 +19,14 @@
 //!
 //! **Added mass** acts normal to the line only: the 2×2 block `m_a·L·(I − t tᵀ)` with
 //! `m_a = Ca·ρ·πD²/4` per unit length.
+//!
+//! **Wave inertia** (Froude–Krylov plus the added-mass part): `f = ρ·(πD²/4)·(1 + Ca)·u̇_n·L` with
+//! `u̇_n = u̇_w − (u̇_w·t) t` the normal part of the water's acceleration; it does not depend on the
+//! node's motion and adds nothing to the Jacobian.
 
 use serde::{Deserialize, Serialize};
+
+use crate::waves::Waves;
 
 /// Hydrodynamic coefficients and the current.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -74,7 +81,8 @@ impl Hydro {
     }
 
     /// The Morison drag on a node of diameter `d` and tributary length `l`, at height `z`, with the
-    /// tangent `(tx, tz)` and the velocity `(vx, vz)`; with `with_c`, also the damping block.
+    /// tangent `(tx, tz)`, the velocity `(vx, vz)` and the wave particle velocity `wave` (if any);
+    /// with `with_c`, also the damping block.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn drag(
@@ -84,12 +92,15 @@ impl Hydro {
         (tx, tz): (f64, f64),
         z: f64,
         (vx, vz): (f64, f64),
+        wave: Option<[f64; 2]>,
         with_c: bool,
     ) -> NodeDrag {
         let kn0 = 0.5 * self.water_density * self.cd_normal;
         let ka0 = 0.5 * self.water_density * self.cd_axial * std::f64::consts::PI;
-        let rx = self.current_at(z) - vx;
-        let rz = -vz;
+        let (rx, rz) = match wave {
+            None => (self.current_at(z) - vx, -vz),
+            Some([wx, wz]) => (self.current_at(z) + wx - vx, wz - vz),
+        };
         let s = rx * tx + rz * tz;
         let (nx, nz) = (rx - s * tx, rz - s * tz);
         let vn = (nx * nx + nz * nz).sqrt();
@@ -115,9 +126,27 @@ impl Hydro {
     }
 }
 
-/// The environment of a dynamic run. Absent parts are `None` and cost nothing.
+impl Hydro {
+    /// The wave inertia force on a node of diameter `d` and tributary length `l` with the tangent
+    /// `(tx, tz)`, from the water's acceleration `acc` (see the module docs), N.
+    #[inline]
+    pub fn wave_inertia(&self, d: f64, l: f64, (tx, tz): (f64, f64), acc: [f64; 2]) -> [f64; 2] {
+        let c =
+            self.water_density * std::f64::consts::PI * d * d / 4.0 * (1.0 + self.ca_normal) * l;
+        let s = acc[0] * tx + acc[1] * tz;
+        [c * (acc[0] - s * tx), c * (acc[1] - s * tz)]
+    }
+}
+
+/// The environment of a run. Absent parts are `None` and cost nothing.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Environment {
-    /// The sea water's hydrodynamics, if the scene has them.
+    /// The sea water's hydrodynamics, if the scene has them (steady current drag acts in the
+    /// statics too).
     pub hydro: Option<Hydro>,
+    /// Waves, if the scene has them (they load the line through `hydro`, and drive the vessel).
+    pub waves: Option<Waves>,
+    /// Height of the still water level above the mudline (the water depth), m: waves' `z` is
+    /// measured from it.
+    pub water_level: f64,
 }

@@ -30,6 +30,7 @@ use std::time::Instant;
 use crate::analytical::{CatenaryError, FreeCatenary, TouchdownCatenary};
 use crate::assembly::Assembler;
 pub use crate::assembly::{LineResults, Placement};
+use crate::environment::Hydro;
 use crate::model::LineModel;
 use crate::sparse::SolveError;
 
@@ -112,8 +113,10 @@ pub enum StaticError {
 #[derive(Debug)]
 pub struct StaticWorkspace {
     /// The structural assembly; after [`StaticWorkspace::assemble`] its residual includes the
-    /// seabed.
+    /// seabed and the current's drag.
     pub asm: Assembler,
+    /// The steady current's hydrodynamics for the solve under way (set by [`solve_in`]).
+    current: Option<Hydro>,
     g: Vec<f64>,
     g0: Vec<f64>,
     dq: Vec<f64>,
@@ -127,6 +130,7 @@ impl StaticWorkspace {
         let n3 = 3 * model.nodes();
         Ok(Self {
             asm: Assembler::new(model)?,
+            current: None,
             g: vec![0.0; model.n_eq],
             g0: vec![0.0; model.n_eq],
             dq: vec![0.0; model.n_eq],
@@ -136,10 +140,31 @@ impl StaticWorkspace {
     }
 
     /// Assembles the global residual `R(q)` into the assembler's residual and, if `with_k`, the
-    /// tangent. The seabed acts through its backbone (initial penetration only). Allocates nothing.
+    /// tangent. The seabed acts through its backbone (initial penetration only); a steady current
+    /// (see [`solve_in`]) through its drag on the line at rest, whose dependence on the orientation
+    /// is left out of the tangent. Allocates nothing.
     pub fn assemble(&mut self, model: &LineModel, pl: &Placement, u: &[f64], with_k: bool) {
-        self.asm.assemble_structure(model, pl, u, with_k);
+        self.asm.assemble_structure(model, pl, u, 0.0, with_k);
         let q = &pl.base;
+        if let Some(h) = &self.current {
+            if !h.current.is_empty() {
+                for i in 0..model.nodes() {
+                    let th = q[3 * i + 2] + u[3 * i + 2];
+                    let (ty, tx) = th.sin_cos();
+                    let d = h.drag(
+                        model.node_od[i],
+                        model.tributary[i],
+                        (tx, ty),
+                        q[3 * i + 1] + u[3 * i + 1],
+                        (0.0, 0.0),
+                        None,
+                        false,
+                    );
+                    self.asm.residual[3 * i] -= d.force[0];
+                    self.asm.residual[3 * i + 1] -= d.force[1];
+                }
+            }
+        }
         if let Some(sb) = &model.seabed {
             for i in 0..model.nodes() {
                 let z_pen = sb.mudline_z - (q[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]);
@@ -192,7 +217,7 @@ pub fn residual_reference(model: &LineModel) -> f64 {
 }
 
 /// Solves the static equilibrium for the displacements `u` from the placement `pl` (the prescribed
-/// dofs keep their values), in place.
+/// dofs keep their values), in place, without current.
 pub fn solve(
     model: &LineModel,
     pl: &Placement,
@@ -200,6 +225,21 @@ pub fn solve(
     ws: &mut StaticWorkspace,
     opts: &StaticOptions,
 ) -> Result<StaticReport, StaticError> {
+    solve_in(model, None, pl, q, ws, opts)
+}
+
+/// [`solve`] in a steady current: `hydro`'s current profile drags on the line at rest (the
+/// dynamics then start in equilibrium with it). The workspace keeps the current for the
+/// [`line_results`] that follow.
+pub fn solve_in(
+    model: &LineModel,
+    hydro: Option<&Hydro>,
+    pl: &Placement,
+    q: &mut [f64],
+    ws: &mut StaticWorkspace,
+    opts: &StaticOptions,
+) -> Result<StaticReport, StaticError> {
+    ws.current = hydro.filter(|h| !h.current.is_empty()).cloned();
     let mut rep = StaticReport::default();
     let refn = residual_reference(model);
     let t0 = Instant::now();
@@ -457,8 +497,8 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
     Ok(q)
 }
 
-/// Nodal results at `u` (see [`Assembler::fill_results`]); at the ends the tension is the support
-/// reaction's magnitude. `seabed_force` evaluates `force_at(node, z_pen)` where the node
+/// Nodal results at `u` (see [`Assembler::fill_results`]), with the loads of the last solve (the
+/// current, if any); at the ends the tension is the support reaction's magnitude. `seabed_force` evaluates `force_at(node, z_pen)` where the node
 /// penetrates, the law in the analysis' mode; the mode code is 1 (initial penetration) there.
 pub fn line_results(
     model: &LineModel,
@@ -501,6 +541,9 @@ pub struct StaticSummary {
     pub top_tension: f64,
     /// Horizontal component of the top tension, N.
     pub horizontal_tension: f64,
+    /// Horizontal component of the anchor's reaction, N (the same as at the top without current;
+    /// a current's drag adds to it along the line).
+    pub anchor_horizontal_tension: f64,
     /// Arc length of the touchdown point (first contact from the top), m, if any.
     pub touchdown_arc: Option<f64>,
     /// The most negative (sag) bending moment, N·m, and its arc length.
@@ -514,9 +557,10 @@ pub struct StaticSummary {
 }
 
 #[allow(clippy::needless_range_loop)]
-/// Summarises nodal results at the arc lengths `arc` (`top_reaction` = the global residual at the
-/// top node's x and z).
-pub fn summarise(arc: &[f64], r: &LineResults, top_reaction: (f64, f64)) -> StaticSummary {
+/// Summarises nodal results at the arc lengths `arc` (`reactions` = the global residual at the top
+/// node's and at the anchor node's x and z).
+pub fn summarise(arc: &[f64], r: &LineResults, reactions: [(f64, f64); 2]) -> StaticSummary {
+    let [top_reaction, anchor_reaction] = reactions;
     let n = arc.len();
     let mut touchdown_arc = None;
     let mut touchdown_moment = None;
@@ -545,6 +589,7 @@ pub fn summarise(arc: &[f64], r: &LineResults, top_reaction: (f64, f64)) -> Stat
     StaticSummary {
         top_tension: (top_reaction.0.powi(2) + top_reaction.1.powi(2)).sqrt(),
         horizontal_tension: top_reaction.0.abs(),
+        anchor_horizontal_tension: anchor_reaction.0.abs(),
         touchdown_arc,
         max_sag_moment: sag,
         max_abs_moment: abs,

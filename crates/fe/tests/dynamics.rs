@@ -128,8 +128,12 @@ fn dynamic(line: &LineModel, pl: &Placement, hydro: Option<Hydro>, alpha: f64) -
     DynamicModel {
         line: line.clone(),
         placement: pl.clone(),
-        environment: Environment { hydro },
+        environment: Environment {
+            hydro,
+            ..Environment::default()
+        },
         motion: None,
+        vessel: None,
         settings: settings(alpha),
     }
 }

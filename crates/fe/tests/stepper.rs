@@ -56,8 +56,10 @@ fn dynamic(line: &LineModel, pl: &Placement, set: &Settings) -> DynamicModel {
         placement: pl.clone(),
         environment: Environment {
             hydro: set.hydro.clone(),
+            ..Environment::default()
         },
         motion: None,
+        vessel: None,
         settings: DynamicSettings {
             scheme: Scheme::Hht { alpha: set.alpha },
             tol: 1e-10,

@@ -68,7 +68,15 @@ fn solve_scr(model: &LineModel) -> Solved {
     let r = line_results(model, &pl, &u, &mut ws, |_, p| {
         sb.seabed.backbone(p).total()
     });
-    let s = summarise(&model.arc, &r, (ws.asm.residual[0], ws.asm.residual[1]));
+    let n3 = ws.asm.residual.len();
+    let s = summarise(
+        &model.arc,
+        &r,
+        [
+            (ws.asm.residual[0], ws.asm.residual[1]),
+            (ws.asm.residual[n3 - 3], ws.asm.residual[n3 - 2]),
+        ],
+    );
     Solved { r, s, z_contact }
 }
 

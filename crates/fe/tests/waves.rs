@@ -91,6 +91,11 @@ fn synthesis_is_exact_and_deterministic() {
     assert_ne!(other.components[0].phase, w.components[0].phase);
     // A fixed value pins the generator: a change of random numbers changes every storm.
     println!("storm 23, first component: {:?}", c[0]);
+    println!(
+        "storm 23: stretching left out below {:.1} m",
+        w.stretch_depth()
+    );
+    assert!(w.stretch_depth() > 3.0 * 5.0 && w.stretch_depth() < 1000.0);
 }
 
 /// The largest |autocorrelation| of a record for lags in `[from, to]` s, and where.
@@ -197,7 +202,11 @@ fn kinematics_against_closed_forms() {
             ] {
                 let kin = w.kinematics(x, z, t).expect("under water");
                 let ph = om * t - s * k * x + 0.3;
-                let eta = w.elevation(x, t);
+                let eta = if z < -w.stretch_depth() {
+                    0.0
+                } else {
+                    w.elevation(x, t)
+                };
                 let zs = (z - eta) * depth / (depth + eta);
                 let (cz, sz) = if depth > 500.0 {
                     ((k * zs).exp(), (k * zs).exp())

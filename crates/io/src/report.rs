@@ -47,8 +47,9 @@ pub fn static_text(run: &StaticRun) -> String {
     );
     let _ = writeln!(
         t,
-        "  horizontal tension     {:>12.2} kN",
-        s.horizontal_tension / 1e3
+        "  horizontal tension     {:>12.2} kN at the top, {:.2} kN at the anchor",
+        s.horizontal_tension / 1e3,
+        s.anchor_horizontal_tension / 1e3
     );
     let _ = writeln!(
         t,
@@ -100,6 +101,7 @@ pub fn static_json(run: &StaticRun) -> serde_json::Value {
             "elements": run.model.elements.len(),
             "top_tension": s.top_tension,
             "horizontal_tension": s.horizontal_tension,
+            "anchor_horizontal_tension": s.anchor_horizontal_tension,
             "top_angle_from_vertical_deg": s.top_angle_from_vertical.to_degrees(),
             "touchdown_arc": s.touchdown_arc,
             "max_sag_moment": s.max_sag_moment.0,

@@ -7,6 +7,8 @@ use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::motion::TopMotion;
 use catena_fe::statics::EndPositions;
+use catena_fe::vessel::{RaoTable, Vessel};
+use catena_fe::waves::{Direction, Waves};
 use serde::Deserialize;
 
 use super::edit::{self, Edit};
@@ -235,6 +237,48 @@ pub struct SeriesTable {
     pub file: String,
 }
 
+/// The kind of `[waves]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WaveKind {
+    /// Irregular, JONSWAP.
+    Jonswap,
+    /// Regular (Airy).
+    Airy,
+}
+
+/// `[waves]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct WavesTable {
+    pub kind: WaveKind,
+    pub hs: Option<f64>,
+    pub tp: Option<f64>,
+    pub gamma: Option<f64>,
+    pub seed: Option<u64>,
+    pub components: Option<usize>,
+    pub height: Option<f64>,
+    pub period: Option<f64>,
+    pub phase_deg: Option<f64>,
+    #[serde(default = "plus_x")]
+    pub direction: String,
+    pub ramp: Option<f64>,
+}
+
+fn plus_x() -> String {
+    "+x".into()
+}
+
+/// `[vessel]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct VesselTable {
+    pub rao: String,
+    pub hangoff_offset: [f64; 2],
+}
+
 /// `[[gauge]]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -266,6 +310,8 @@ pub struct DynamicSpec {
     pub environment: Environment,
     /// The top end's prescribed motion, if any.
     pub motion: Option<TopMotion>,
+    /// The vessel carrying the top end (`[vessel]`), if any.
+    pub vessel: Option<Vessel>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -296,6 +342,8 @@ pub struct RiserFile {
     pub hydrodynamics: Option<HydroTable>,
     pub current: Option<CurrentTable>,
     pub motion: Option<MotionTable>,
+    pub waves: Option<WavesTable>,
+    pub vessel: Option<VesselTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
 }
@@ -323,8 +371,20 @@ pub struct RiserScene {
     pub water_depth: f64,
     /// Line summary: (EA, EI, submerged weight, mass).
     pub line: (f64, f64, f64, f64),
+    /// The sea water's hydrodynamics (`[hydrodynamics]`, `[current]`), if any: a current acts in the
+    /// statics too.
+    pub hydro: Option<Hydro>,
     /// The dynamic analysis, if the scene has a `[dynamic]` table.
     pub dynamic: Option<DynamicSpec>,
+}
+
+/// What the dynamic tables need to know of the site.
+#[derive(Debug, Clone, Copy)]
+struct Site {
+    length: f64,
+    water_depth: f64,
+    gravity: f64,
+    top_x: f64,
 }
 
 fn positive(file: &str, key: &str, v: f64, what: &str) -> Result<f64, SceneError> {
@@ -596,20 +656,26 @@ impl RiserScene {
             ));
         }
         let _ = required::<f64>;
+        let hydro = hydro_of(file, raw, env.water_density)?;
         let dynamic = match &raw.dynamic {
             Some(d) => Some(dynamic_spec(
                 file,
                 raw,
                 d,
-                env.water_density,
-                l.length,
+                hydro.clone(),
+                Site {
+                    length: l.length,
+                    water_depth: env.water_depth,
+                    gravity: env.gravity,
+                    top_x: e.top_x,
+                },
                 files,
             )?),
             None => {
                 for (present, key) in [
-                    (raw.hydrodynamics.is_some(), "hydrodynamics"),
-                    (raw.current.is_some(), "current"),
                     (raw.motion.is_some(), "motion"),
+                    (raw.waves.is_some(), "waves"),
+                    (raw.vessel.is_some(), "vessel"),
                     (!raw.gauge.is_empty(), "gauge"),
                 ] {
                     if present {
@@ -643,19 +709,76 @@ impl RiserScene {
             }),
             water_depth: env.water_depth,
             line: (ea, ei, weight, mass),
+            hydro,
             dynamic,
         })
     }
+}
+
+/// `[hydrodynamics]` and `[current]`: the sea water's hydrodynamics, if the scene has them.
+fn hydro_of(file: &str, raw: &RiserFile, water_density: f64) -> Result<Option<Hydro>, SceneError> {
+    let hydro = match (&raw.hydrodynamics, &raw.current) {
+        (Some(h), cur) => {
+            for (k, v) in [
+                ("hydrodynamics.cd_normal", h.cd_normal),
+                ("hydrodynamics.cd_axial", h.cd_axial),
+                ("hydrodynamics.ca_normal", h.ca_normal),
+            ] {
+                if !(v >= 0.0 && v.is_finite()) {
+                    return Err(invalid(file, k, format!("a coefficient >= 0, got {v}")));
+                }
+            }
+            let mut current: Vec<(f64, f64)> = Vec::new();
+            if let Some(c) = cur {
+                if c.profile.is_empty() {
+                    return Err(invalid(
+                        file,
+                        "current.profile",
+                        "at least one [z, speed] pair",
+                    ));
+                }
+                for (i, p) in c.profile.iter().enumerate() {
+                    if !(p[0].is_finite() && p[1].is_finite())
+                        || current.last().is_some_and(|l| p[0] <= l.0)
+                    {
+                        return Err(invalid(
+                            file,
+                            format!("current.profile[{i}]"),
+                            "[z (m, increasing), speed (m/s)] pairs",
+                        ));
+                    }
+                    current.push((p[0], p[1]));
+                }
+            }
+            Some(Hydro {
+                water_density,
+                cd_normal: h.cd_normal,
+                cd_axial: h.cd_axial,
+                ca_normal: h.ca_normal,
+                current,
+            })
+        }
+        (None, Some(_)) => {
+            return Err(invalid(
+                file,
+                "current",
+                "a [hydrodynamics] table as well (the current acts through drag)",
+            ))
+        }
+        (None, None) => None,
+    };
+    Ok(hydro)
 }
 
 fn dynamic_spec(
     file: &str,
     raw: &RiserFile,
     d: &DynamicTable,
-    water_density: f64,
-    length: f64,
+    hydro: Option<Hydro>,
+    site: Site,
     files: &dyn Resolver,
 ) -> Result<DynamicSpec, SceneError> {
+    let length = site.length;
     positive(file, "dynamic.duration", d.duration, "a duration in s")?;
     positive(file, "dynamic.time_step", d.time_step, "a time step in s")?;
     if d.time_step > d.duration {
@@ -727,56 +850,6 @@ fn dynamic_spec(
         d.tolerance,
         "a relative tolerance",
     )?;
-    let hydro = match (&raw.hydrodynamics, &raw.current) {
-        (Some(h), cur) => {
-            for (k, v) in [
-                ("hydrodynamics.cd_normal", h.cd_normal),
-                ("hydrodynamics.cd_axial", h.cd_axial),
-                ("hydrodynamics.ca_normal", h.ca_normal),
-            ] {
-                if !(v >= 0.0 && v.is_finite()) {
-                    return Err(invalid(file, k, format!("a coefficient >= 0, got {v}")));
-                }
-            }
-            let mut current: Vec<(f64, f64)> = Vec::new();
-            if let Some(c) = cur {
-                if c.profile.is_empty() {
-                    return Err(invalid(
-                        file,
-                        "current.profile",
-                        "at least one [z, speed] pair",
-                    ));
-                }
-                for (i, p) in c.profile.iter().enumerate() {
-                    if !(p[0].is_finite() && p[1].is_finite())
-                        || current.last().is_some_and(|l| p[0] <= l.0)
-                    {
-                        return Err(invalid(
-                            file,
-                            format!("current.profile[{i}]"),
-                            "[z (m, increasing), speed (m/s)] pairs",
-                        ));
-                    }
-                    current.push((p[0], p[1]));
-                }
-            }
-            Some(Hydro {
-                water_density,
-                cd_normal: h.cd_normal,
-                cd_axial: h.cd_axial,
-                ca_normal: h.ca_normal,
-                current,
-            })
-        }
-        (None, Some(_)) => {
-            return Err(invalid(
-                file,
-                "current",
-                "a [hydrodynamics] table as well (the current acts through drag)",
-            ))
-        }
-        (None, None) => None,
-    };
     let motion = match &raw.motion {
         None => None,
         Some(m) => {
@@ -924,9 +997,29 @@ fn dynamic_spec(
             "a time in [0, duration) s",
         ));
     }
+    let waves = match &raw.waves {
+        Some(w) => Some(waves_of(file, w, site)?),
+        None => None,
+    };
+    let vessel = match (&raw.vessel, &waves) {
+        (Some(v), Some(w)) => Some(vessel_of(file, v, w, site, files)?),
+        (Some(_), None) => {
+            return Err(invalid(
+                file,
+                "vessel",
+                "a [waves] table as well (the vessel moves with the waves)",
+            ))
+        }
+        (None, _) => None,
+    };
     Ok(DynamicSpec {
-        environment: Environment { hydro },
+        environment: Environment {
+            hydro,
+            waves,
+            water_level: site.water_depth,
+        },
         motion,
+        vessel,
         settings: DynamicSettings {
             scheme,
             tol: d.tolerance,
@@ -939,4 +1032,146 @@ fn dynamic_spec(
         envelope_start: d.envelope_start,
         gauges,
     })
+}
+
+/// `[waves]` → the wave train (see `docs/scene.md`).
+fn waves_of(file: &str, w: &WavesTable, site: Site) -> Result<Waves, SceneError> {
+    let direction = match w.direction.as_str() {
+        "+x" => Direction::PlusX,
+        "-x" => Direction::MinusX,
+        other => {
+            return Err(invalid(
+                file,
+                "waves.direction",
+                format!("\"+x\" (from the anchor towards the hang-off) or \"-x\", got \"{other}\""),
+            ))
+        }
+    };
+    let stray = |keys: &[(&str, bool)], kind: &str| -> Result<(), SceneError> {
+        for (k, present) in keys {
+            if *present {
+                return Err(invalid(
+                    file,
+                    format!("waves.{k}"),
+                    format!("no `{k}` with kind = \"{kind}\""),
+                ));
+            }
+        }
+        Ok(())
+    };
+    let bad = |e: catena_fe::waves::WaveError| {
+        let catena_fe::waves::WaveError::Bad { key, expected, .. } = &e;
+        invalid(file, format!("waves.{key}"), format!("{expected} ({e})"))
+    };
+    let (waves, natural) = match w.kind {
+        WaveKind::Jonswap => {
+            stray(
+                &[
+                    ("height", w.height.is_some()),
+                    ("period", w.period.is_some()),
+                    ("phase_deg", w.phase_deg.is_some()),
+                ],
+                "jonswap",
+            )?;
+            let hs = required(file, "waves.hs", w.hs, "the significant wave height in m")?;
+            let tp = required(file, "waves.tp", w.tp, "the peak period in s")?;
+            let seed = required(
+                file,
+                "waves.seed",
+                w.seed,
+                "an integer seed (the same seed gives the same storm)",
+            )?;
+            let waves = Waves::jonswap(
+                hs,
+                tp,
+                w.gamma,
+                seed,
+                w.components.unwrap_or(400),
+                direction,
+                site.water_depth,
+                site.gravity,
+                0.0,
+            )
+            .map_err(bad)?;
+            (waves, tp)
+        }
+        WaveKind::Airy => {
+            stray(
+                &[
+                    ("hs", w.hs.is_some()),
+                    ("tp", w.tp.is_some()),
+                    ("gamma", w.gamma.is_some()),
+                    ("seed", w.seed.is_some()),
+                    ("components", w.components.is_some()),
+                ],
+                "airy",
+            )?;
+            let height = required(file, "waves.height", w.height, "the wave height in m")?;
+            let period = required(file, "waves.period", w.period, "the wave period in s")?;
+            let mut waves = Waves::regular(
+                height,
+                period,
+                direction,
+                site.water_depth,
+                site.gravity,
+                0.0,
+            )
+            .map_err(bad)?;
+            if let Some(p) = w.phase_deg {
+                if !p.is_finite() {
+                    return Err(invalid(
+                        file,
+                        "waves.phase_deg",
+                        "a finite phase in degrees",
+                    ));
+                }
+                waves.components[0].phase = p.to_radians();
+            }
+            (waves, period)
+        }
+    };
+    let ramp = w.ramp.unwrap_or(2.0 * natural);
+    if !(ramp.is_finite() && ramp >= 0.0) {
+        return Err(invalid(
+            file,
+            "waves.ramp",
+            format!("a ramp duration >= 0 s, got {ramp}"),
+        ));
+    }
+    let mut waves = waves;
+    waves.ramp = ramp;
+    Ok(waves)
+}
+
+/// `[vessel]` → the vessel on the wave train: the RAO table read through the resolver, the RAO
+/// origin at `top_x − Δx`.
+fn vessel_of(
+    file: &str,
+    v: &VesselTable,
+    waves: &Waves,
+    site: Site,
+    files: &dyn Resolver,
+) -> Result<Vessel, SceneError> {
+    let text = files
+        .read(&v.rao)
+        .map_err(|e| invalid(file, "vessel.rao", format!("a readable RAO table ({e})")))?;
+    let table = RaoTable::parse_csv(&text).map_err(|e| {
+        invalid(
+            file,
+            "vessel.rao",
+            format!(
+                "an RAO table in the format of cases/scr1000/semi-rao.csv ({}: {e})",
+                v.rao
+            ),
+        )
+    })?;
+    let [dx, dz] = v.hangoff_offset;
+    if !(dx.is_finite() && dz.is_finite()) {
+        return Err(invalid(
+            file,
+            "vessel.hangoff_offset",
+            "[x, z] of the hang-off relative to the RAO origin, in m",
+        ));
+    }
+    Ok(Vessel::new(table, site.top_x - dx, [dx, dz], waves))
 }
