@@ -133,6 +133,9 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     if !r.spec.gauges.is_empty() {
         plot::gauges(&out.join("gauges.png"), &r)?;
     }
+    if r.model.environment.waves.is_some() {
+        plot::sea(&out.join("sea.png"), &r)?;
+    }
     let mut t = report::dynamic_text(&r);
     let _ = writeln!(
         t,

@@ -9,6 +9,13 @@
 //!   `/dynamic/x`, `z`, `effective_tension`, `bending_moment`, `penetration`, `seabed_force` (n_t ×
 //!   n_nodes, f64) and `seabed_mode` (n_t × n_nodes, u8: 0 not in contact, 1 initial penetration,
 //!   2 uplift, 3 repenetration); `/dynamic/gauges/NAME/bending_moment` and `effective_tension` (n_t).
+//! - with `[waves]`: `/dynamic/wave_elevation` (m, at the RAO origin, or at the top end's x without a
+//!   vessel), `/dynamic/top_pitch` (rad, the vessel's pitch, positive bow down; 0 without a vessel)
+//!   and `/dynamic/top_axial_motion` (m, the hang-off's displacement along the riser's static top
+//!   tangent, `u_a = ΔX sin θ_top + ΔZ cos θ_top`, θ_top from the vertical, positive up the riser),
+//!   each n_t; `/waves/omega` (rad/s), `/waves/wavenumber` (rad/m), `/waves/amplitude` (m) and
+//!   `/waves/phase` (rad), one value per component, with the attributes `direction` (`+x`/`-x`),
+//!   `depth` (m) and `ramp` (s): `η(x, t) = r(t)·Σ a cos(ωt − s k x + ε)` re-synthesises the record.
 //!   Written in chunks of 64 records, or every second of wall time if sooner, as the run goes, and
 //!   the file flushed each time: a run that stops keeps every record up to its last converged step,
 //!   and a run killed outright keeps `/static` and every record up to about a second before the
@@ -96,8 +103,17 @@ pub struct Recorder {
     fields: Vec<(hdf5::Dataset, Vec<f64>)>,
     modes: (hdf5::Dataset, Vec<u8>),
     gauge_arcs: Vec<f64>,
+    /// With waves: `(x where the elevation is recorded, static top (x, z), (sin θ_top, cos θ_top))`.
+    sea: Option<(f64, [f64; 2], [f64; 2])>,
+    has_sea: bool,
     last_flush: Instant,
 }
+
+const SEA: [(&str, &str); 3] = [
+    ("wave_elevation", "m"),
+    ("top_pitch", "rad"),
+    ("top_axial_motion", "m"),
+];
 
 const SERIES: [(&str, &str); 4] = [
     ("time", "s"),
@@ -136,6 +152,37 @@ impl Recorder {
         };
         for (name, units) in SERIES {
             mk1(&g, name, units).map_err(&err)?;
+        }
+        let waves = statics
+            .scene
+            .dynamic
+            .as_ref()
+            .and_then(|d| d.environment.waves.as_ref());
+        if let Some(w) = waves {
+            for (name, units) in SEA {
+                mk1(&g, name, units).map_err(&err)?;
+            }
+            let wg = file.create_group("waves").map_err(&err)?;
+            let col = |f: fn(&catena_fe::waves::Component) -> f64| -> Vec<f64> {
+                w.components.iter().map(f).collect()
+            };
+            vector(&wg, "omega", &col(|c| c.omega), "rad/s").map_err(&err)?;
+            vector(&wg, "wavenumber", &col(|c| c.k), "rad/m").map_err(&err)?;
+            vector(&wg, "amplitude", &col(|c| c.amplitude), "m").map_err(&err)?;
+            vector(&wg, "phase", &col(|c| c.phase), "rad").map_err(&err)?;
+            let dir = match w.direction {
+                catena_fe::waves::Direction::PlusX => "+x",
+                catena_fe::waves::Direction::MinusX => "-x",
+            };
+            attr(&wg, "direction", dir).map_err(&err)?;
+            attr(&wg, "depth", &w.depth.to_string()).map_err(&err)?;
+            attr(&wg, "ramp", &w.ramp.to_string()).map_err(&err)?;
+            attr(
+                &wg,
+                "phase_convention",
+                "eta(x, t) = r(t) * sum(a * cos(omega t - s k x + phase)), s = +1 for +x; r the quintic ramp",
+            )
+            .map_err(&err)?;
         }
         if !gauges.is_empty() {
             let gg = g.create_group("gauges").map_err(&err)?;
@@ -208,6 +255,12 @@ impl Recorder {
             }
             fields.push((ds, Vec::with_capacity(chunk * n)));
         }
+        let has_sea = g.link_exists("wave_elevation");
+        if has_sea {
+            for (name, _) in SEA {
+                series.push((g.dataset(name).map_err(&err)?, Vec::with_capacity(chunk)));
+            }
+        }
         let md = g.dataset("seabed_mode").map_err(&err)?;
         let written = series[0].0.shape().first().copied().unwrap_or(0);
         Ok(Self {
@@ -221,11 +274,19 @@ impl Recorder {
             fields,
             modes: (md, Vec::with_capacity(chunk * n)),
             gauge_arcs: Vec::new(),
+            sea: None,
+            has_sea,
             last_flush: Instant::now(),
         })
     }
 
-    fn push(&mut self, t: f64, r: &LineResults, arc: &[f64]) -> Result<(), AppError> {
+    fn push(
+        &mut self,
+        t: f64,
+        r: &LineResults,
+        arc: &[f64],
+        sea: Option<[f64; 3]>,
+    ) -> Result<(), AppError> {
         let mut k = 0;
         for v in [t, r.x[0], r.z[0], r.tension[0]] {
             self.series[k].1.push(v);
@@ -235,6 +296,12 @@ impl Recorder {
             self.series[k].1.push(at_arc(arc, &r.moment, s));
             self.series[k + 1].1.push(at_arc(arc, &r.tension, s));
             k += 2;
+        }
+        if let Some(v) = sea {
+            for x in v {
+                self.series[k].1.push(x);
+                k += 1;
+            }
         }
         for ((_, buf), src) in self.fields.iter_mut().zip([
             &r.x,
@@ -288,6 +355,19 @@ impl Recorder {
         Ok(())
     }
 
+    /// `(wave elevation, pitch, axial hang-off motion)` of a step, with waves.
+    fn sea_values(&self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Option<[f64; 3]> {
+        let (x_ref, top0, axis) = self.sea?;
+        let waves = ctx.model.environment.waves.as_ref()?;
+        let pitch = ctx.model.top_at(s.t).map_or(0.0, |t| t.pitch);
+        let (dx, dz) = (s.results.x[0] - top0[0], s.results.z[0] - top0[1]);
+        Some([
+            waves.elevation(x_ref, s.t),
+            pitch,
+            dx * axis[0] + dz * axis[1],
+        ])
+    }
+
     /// Records written so far (flushed or not).
     pub fn records(&self) -> usize {
         self.written + self.rows
@@ -331,15 +411,31 @@ impl Observer for Recorder {
         restarted: bool,
     ) -> Result<(), AppError> {
         self.gauge_arcs = ctx.spec.gauges.iter().map(|g| g.arc).collect();
+        if self.has_sea {
+            let st = &ctx.statics;
+            let x_ref = ctx
+                .model
+                .vessel
+                .as_ref()
+                .map_or(st.results.x[0], |v| v.origin_x);
+            let th = st.summary.top_angle_from_vertical;
+            self.sea = Some((
+                x_ref,
+                [st.results.x[0], st.results.z[0]],
+                [th.sin(), th.cos()],
+            ));
+        }
         if !restarted {
-            self.push(first.t, first.results, &ctx.model.line.arc)?;
+            let sea = self.sea_values(ctx, first);
+            self.push(first.t, first.results, &ctx.model.line.arc, sea)?;
         }
         Ok(())
     }
 
     fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         if s.record {
-            self.push(s.t, s.results, &ctx.model.line.arc)?;
+            let sea = self.sea_values(ctx, s);
+            self.push(s.t, s.results, &ctx.model.line.arc, sea)?;
         }
         Ok(Control::Continue)
     }
