@@ -110,6 +110,7 @@ pub fn prepare(st: &StaticRun) -> Result<(DynamicSpec, DynamicModel), AppError> 
         environment: spec.environment.clone(),
         motion: spec.motion.clone(),
         vessel: spec.vessel.clone(),
+        structural_damping: spec.structural_damping,
         settings: spec.settings,
     };
     Ok((spec, model))

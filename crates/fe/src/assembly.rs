@@ -193,6 +193,51 @@ impl Assembler {
         }
     }
 
+    /// Adds stiffness-proportional structural damping `β·Bᵀ K_l B·v` of every element
+    /// ([`crate::beam::structural_damping`]) at the configuration `u` and velocities `v` to the
+    /// residual and, with `with_c`, `c_scale` times its velocity derivative to the tangent. Allocates
+    /// nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_structural_damping(
+        &mut self,
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        v: &[f64],
+        beta: f64,
+        c_scale: f64,
+        with_c: bool,
+    ) {
+        for (e, el) in model.elements.iter().enumerate() {
+            let b = 3 * e;
+            let [cx, cz] = pl.chords[e];
+            let ve = [v[b], v[b + 1], v[b + 2], v[b + 3], v[b + 4], v[b + 5]];
+            let d = crate::beam::structural_damping(
+                cx + (u[b + 3] - u[b]),
+                cz + (u[b + 4] - u[b + 1]),
+                el.l0,
+                &el.section,
+                beta,
+                &ve,
+                with_c,
+            );
+            for a in 0..6 {
+                self.residual[b + a] += d.force[a];
+            }
+            if with_c {
+                let slots = &self.elem_slots[e];
+                for a in 0..6 {
+                    for c in 0..6 {
+                        let s = slots[a * 6 + c];
+                        if s != NONE {
+                            self.k.values[s] += c_scale * d.damping[a][c];
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// Adds `v` to the tangent's diagonal at global dof `g` (nothing if `g` is prescribed).
     #[inline]
     pub fn add_dof_tangent(&mut self, model: &LineModel, g: usize, v: f64) {

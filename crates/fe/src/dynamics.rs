@@ -131,6 +131,10 @@ pub struct DynamicModel {
     pub motion: Option<TopMotion>,
     /// The vessel carrying the top end, moved by the waves, if any (added to `motion`).
     pub vessel: Option<Vessel>,
+    /// Stiffness-proportional structural damping `β` (s), if the scene has it: each element's
+    /// damping is `β` times its material stiffness on its deformation rates
+    /// ([`crate::beam::structural_damping`]).
+    pub structural_damping: Option<f64>,
     /// The solver settings.
     pub settings: DynamicSettings,
 }
@@ -487,6 +491,9 @@ fn forces_at_iterate(
     asm.assemble_structure(model, pl, u, ws.fj_rotation, with_k);
     if with_k {
         asm.scale_tangent(k_scale);
+    }
+    if let Some(beta) = dm.structural_damping {
+        asm.add_structural_damping(model, pl, u, v, beta, k_scale * c_v, with_k);
     }
     let n = model.nodes();
     if let Some(sb) = &model.seabed {

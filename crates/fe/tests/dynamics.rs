@@ -134,6 +134,7 @@ fn dynamic(line: &LineModel, pl: &Placement, hydro: Option<Hydro>, alpha: f64) -
         },
         motion: None,
         vessel: None,
+        structural_damping: None,
         settings: settings(alpha),
     }
 }

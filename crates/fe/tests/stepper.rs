@@ -40,14 +40,19 @@ fn model(seg: Segment, top: Support, anchor: Support, flexjoint: Option<(f64, f6
     .expect("model")
 }
 
-/// Settings: HHT with `alpha` and the sea `hydro` (None: in air).
+/// Settings: HHT with `alpha`, the sea `hydro` (None: in air) and structural damping `beta`.
 struct Settings {
     alpha: f64,
     hydro: Option<Hydro>,
+    beta: Option<f64>,
 }
 
 fn settings(alpha: f64, hydro: Option<Hydro>) -> Settings {
-    Settings { alpha, hydro }
+    Settings {
+        alpha,
+        hydro,
+        beta: None,
+    }
 }
 
 fn dynamic(line: &LineModel, pl: &Placement, set: &Settings) -> DynamicModel {
@@ -60,6 +65,7 @@ fn dynamic(line: &LineModel, pl: &Placement, set: &Settings) -> DynamicModel {
         },
         motion: None,
         vessel: None,
+        structural_damping: set.beta,
         settings: DynamicSettings {
             scheme: Scheme::Hht { alpha: set.alpha },
             tol: 1e-10,
@@ -407,4 +413,72 @@ fn flexjoint_pulls_towards_its_neutral_angle() {
     );
     assert!((phi / want - 1.0).abs() < 1e-3, "{phi} vs {want}");
     assert!(tip_x > 0.0 && (tip_x / (l * want.sin()) - 1.0).abs() < 1e-2);
+}
+
+/// Structural damping given as a fraction ζ of critical at a period T (`β = ζT/π`) damps a mode of
+/// that period at ζ: the bar's axial vibration with ζ = 2 % at its own period decays with the
+/// logarithmic decrement `δ = 2πζ/√(1 − ζ²)`; the measured ζ is within 2 % of 0.02 (trapezoidal rule,
+/// Ω = 0.05, which adds no algorithmic damping). Without the damping the amplitude does not decay.
+#[test]
+fn structural_damping_gives_the_damping_ratio_at_its_period() {
+    let (ea, l, mu): (f64, f64, f64) = (1.0e6, 1.0, 2.0);
+    let omega = (ea / l / (mu * l / 2.0)).sqrt();
+    let period = 2.0 * PI / omega;
+    let zeta = 0.02;
+    let dt = 0.05 / omega;
+    let seg = segment(l, 1, ea, 1.0, mu, 0.0, 0.1);
+    let set = Settings {
+        alpha: 0.0,
+        hydro: None,
+        beta: Some(zeta * period / PI),
+    };
+    let (t, x) = bar_history(seg, &set, 1e-3, dt, (20.0 * period / dt) as usize);
+    let pk = peaks(&t, &x);
+    let (a0, a1) = (pk[1].1, pk[pk.len() - 1].1);
+    let cycles = (pk[pk.len() - 1].0 - pk[1].0) / period;
+    let delta = (a0 / a1).ln() / cycles;
+    let measured = delta / (4.0 * PI * PI + delta * delta).sqrt();
+    println!("ζ measured {measured:.5} (given {zeta}) over {cycles:.1} cycles");
+    assert!((measured / zeta - 1.0).abs() < 0.02, "{measured}");
+}
+
+/// Structural damping spares rigid-body motion: a stiff bar (L 10 m) pinned at one end and released
+/// from horizontal swings as a rigid pendulum; with heavy structural damping (10 % of critical at the
+/// bar's first bending period) it still swings to the other side (its tip reaches x = −L within
+/// 0.5 %) in half the rigid pendulum's period (6.1137 s, within 0.5 %).
+#[test]
+fn structural_damping_spares_a_rigid_pendulum() {
+    let (l, m, g) = (10.0, 10.0, 9.80665);
+    let (ea, ei) = (1e10, 1e7);
+    let mline = model(
+        segment(l, 20, ea, ei, m, m * g, 0.1),
+        Support::Pinned,
+        Support::Free,
+        None,
+    );
+    let nn = mline.nodes();
+    let q: Vec<f64> = (0..nn).flat_map(|i| [mline.arc[i], 0.0, 0.0]).collect();
+    let pl = Placement::new(&q);
+    // First bending period of a pinned–free bar is far below a second: 10 % of critical there.
+    let f1 = 1.875f64.powi(2) / (2.0 * PI) * (ei / (m * l.powi(4))).sqrt();
+    let set = Settings {
+        alpha: -0.1,
+        hydro: None,
+        beta: Some(0.10 / f1 / PI),
+    };
+    let dm = dynamic(&mline, &pl, &set);
+    let mut ws = DynWorkspace::new(&mline).expect("ws");
+    let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
+    let tip = 3 * (nn - 1);
+    let (mut t_min, mut x_min) = (0.0, f64::INFINITY);
+    while st.t < 4.0 {
+        advance(&dm, &mut st, &mut ws, 0.002).expect("steps");
+        let x = pl.base[tip] + st.u[tip];
+        if x < x_min {
+            (t_min, x_min) = (st.t, x);
+        }
+    }
+    println!("tip reaches x = {x_min:.4} m at t = {t_min:.4} s (rigid: −10 m at 3.0569 s)");
+    assert!((x_min / -l - 1.0).abs() < 5e-3, "{x_min}");
+    assert!((t_min / (6.1137 / 2.0) - 1.0).abs() < 5e-3, "{t_min}");
 }

@@ -270,6 +270,15 @@ fn plus_x() -> String {
     "+x".into()
 }
 
+/// `[structural_damping]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct StructuralDampingTable {
+    pub critical_percent: f64,
+    pub period: f64,
+}
+
 /// `[vessel]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -312,6 +321,8 @@ pub struct DynamicSpec {
     pub motion: Option<TopMotion>,
     /// The vessel carrying the top end (`[vessel]`), if any.
     pub vessel: Option<Vessel>,
+    /// Stiffness-proportional structural damping `β = ζ·T/π` (s), if `[structural_damping]`.
+    pub structural_damping: Option<f64>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -344,6 +355,7 @@ pub struct RiserFile {
     pub motion: Option<MotionTable>,
     pub waves: Option<WavesTable>,
     pub vessel: Option<VesselTable>,
+    pub structural_damping: Option<StructuralDampingTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
 }
@@ -676,6 +688,7 @@ impl RiserScene {
                     (raw.motion.is_some(), "motion"),
                     (raw.waves.is_some(), "waves"),
                     (raw.vessel.is_some(), "vessel"),
+                    (raw.structural_damping.is_some(), "structural_damping"),
                     (!raw.gauge.is_empty(), "gauge"),
                 ] {
                     if present {
@@ -1012,7 +1025,28 @@ fn dynamic_spec(
         }
         (None, _) => None,
     };
+    let structural_damping = match &raw.structural_damping {
+        Some(t) => {
+            if !(t.critical_percent.is_finite()
+                && t.critical_percent > 0.0
+                && t.critical_percent <= 100.0)
+            {
+                return Err(invalid(
+                    file,
+                    "structural_damping.critical_percent",
+                    format!(
+                        "a percentage of critical damping in (0, 100], got {}",
+                        t.critical_percent
+                    ),
+                ));
+            }
+            positive(file, "structural_damping.period", t.period, "a period in s")?;
+            Some(t.critical_percent / 100.0 * t.period / std::f64::consts::PI)
+        }
+        None => None,
+    };
     Ok(DynamicSpec {
+        structural_damping,
         environment: Environment {
             hydro,
             waves,
