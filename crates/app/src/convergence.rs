@@ -48,7 +48,6 @@ use crate::run::{self, DynamicRun, RunOptions};
 use crate::scene::edit::Edit;
 use crate::scene::riser::RiserScene;
 use crate::scene::{DirResolver, Resolver};
-use crate::statics;
 
 /// Which setting a series refines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -351,8 +350,7 @@ fn run_variant(
         .map(|e| e.l0)
         .fold(f64::INFINITY, f64::min);
     let t0 = Instant::now();
-    let st = statics::solve(vscene)?;
-    let r = run::run(st, &mut [], RunOptions::default())?;
+    let r = run::simulate(vscene, &mut [], RunOptions::default())?;
     let wall = t0.elapsed().as_secs_f64();
     let values = if r.completed() {
         key_outputs(&r)

@@ -116,6 +116,16 @@ pub fn prepare(st: &StaticRun) -> Result<(DynamicSpec, DynamicModel), AppError> 
     Ok((spec, model))
 }
 
+/// The whole path in one call: the statics of `scene`, then its dynamics, every converged step
+/// handed to the built-in observers and to `extra` (what a study or a binding calls).
+pub fn simulate(
+    scene: crate::scene::riser::RiserScene,
+    extra: &mut [&mut dyn Observer],
+    opts: RunOptions,
+) -> Result<DynamicRun, AppError> {
+    run(statics::solve(scene)?, extra, opts)
+}
+
 /// Runs the dynamics of a solved scene, handing every converged step to the built-in observers and
 /// to `extra`.
 pub fn run(
