@@ -11,11 +11,13 @@
 //! - [`checkpoint`]: checkpoints (State, solver memory, observers' states, scene hash, version);
 //! - [`convergence`]: the convergence study (what accuracy costs in time);
 //! - [`soil_test`]: the soil element test;
+//! - [`fatigue`]: rainflow counting and S-N curves;
 //! - [`error`]: the error types.
 
 pub mod checkpoint;
 pub mod convergence;
 pub mod error;
+pub mod fatigue;
 pub mod observe;
 pub mod run;
 pub mod scene;

@@ -74,6 +74,24 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Rainflow counting (ASTM E1049-85) of a series in a CSV file: writes CYCLES.csv with rows
+    /// range,mean,count in the order found; with --sn, prints Miner's damage of the series.
+    Rainflow {
+        /// The CSV file: a header line, then one value per row (or several columns, with --column).
+        series: PathBuf,
+        /// The cycles file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// The column to count, by its header name.
+        #[arg(long)]
+        column: Option<String>,
+        /// An S-N curve (the series in MPa): dnv-{d,e,f1}-{air,seawater-cp,free-corrosion}.
+        #[arg(long)]
+        sn: Option<String>,
+        /// Stress concentration factor applied to every range.
+        #[arg(long, default_value_t = 1.0)]
+        scf: f64,
+    },
     /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
     /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
     Static {
@@ -146,6 +164,14 @@ fn main() -> ExitCode {
             },
         )
         .map(|t| print!("{t}")),
+        Command::Rainflow {
+            series,
+            out,
+            column,
+            sn,
+            scf,
+        } => commands::rainflow(&series, &out, column.as_deref(), sn.as_deref(), scf)
+            .map(|t| print!("{t}")),
         Command::Static { case, out } => commands::static_(&case, &out).map(|t| print!("{t}")),
     };
     match result {
