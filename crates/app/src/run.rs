@@ -15,6 +15,7 @@ use catena_fe::dynamics::{self, DynWorkspace, DynamicModel, StepInfo};
 
 use crate::checkpoint::{Checkpoint, VERSION};
 use crate::error::AppError;
+use crate::fatigue::observer::Fatigue;
 use crate::observe::{
     Control, Envelopes, Gauges, Observer, RunContext, StepView, Stop, TopHistory,
 };
@@ -36,6 +37,8 @@ pub struct DynamicRun {
     pub gauges: Gauges,
     /// The top end's history.
     pub top: TopHistory,
+    /// Fatigue damage, if the scene has a `[fatigue]` table.
+    pub fatigue: Option<Fatigue>,
     /// Converged steps of `dynamic.time_step` (the time reached is `steps·Δt`).
     pub steps: u64,
     /// The time reached, s.
@@ -145,6 +148,7 @@ pub fn run(
     let mut envelopes = Envelopes::new(n);
     let mut gauges = Gauges::new(&spec.gauges);
     let mut top = TopHistory::default();
+    let mut fatigue = spec.fatigue.clone().map(|f| Fatigue::new(f, n));
     let mut res = LineResults::new(n);
     let n_steps = (spec.duration / spec.dt).round() as u64;
     let mut first_step = 1;
@@ -161,8 +165,8 @@ pub fn run(
             None => ws.forget_factorisation(),
         }
         {
-            let builtin: [&mut dyn Observer; 3] = [&mut envelopes, &mut gauges, &mut top];
-            for o in builtin {
+            let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
+            for o in builtin.into_iter().flatten() {
                 let saved = cp
                     .observers
                     .get(o.name())
@@ -200,13 +204,8 @@ pub fn run(
         envelope: state.t >= spec.envelope_start - 1e-9 * spec.dt,
     };
     {
-        let builtin: [&mut dyn Observer; 3] = [&mut envelopes, &mut gauges, &mut top];
-        for o in builtin
-            .into_iter()
-            .chain(extra.iter_mut().map(|o| &mut **o))
-        {
-            o.start(&ctx, &first, restarted)?;
-        }
+        let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
+        each(builtin, extra, |o| o.start(&ctx, &first, restarted))?;
     }
     let (mut iterations, mut cuts, mut retries) = (0usize, 0u32, 0u32);
     let mut stop = None;
@@ -231,22 +230,23 @@ pub fn run(
                 };
                 let mut wants = false;
                 {
-                    let builtin: [&mut dyn Observer; 3] = [&mut envelopes, &mut gauges, &mut top];
-                    for o in builtin
-                        .into_iter()
-                        .chain(extra.iter_mut().map(|o| &mut **o))
-                    {
+                    let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
+                    each(builtin, extra, |o| {
                         if let Control::Stop(reason) = o.step(&ctx, &view)? {
                             stop = Some(Stop::Interrupted(reason));
                         }
                         wants |= o.wants_checkpoint(k);
-                    }
+                        Ok(())
+                    })?;
                 }
                 if wants {
                     let mut observers = BTreeMap::new();
                     observers.insert(envelopes.name().to_string(), envelopes.save()?);
                     observers.insert(gauges.name().to_string(), gauges.save()?);
                     observers.insert(top.name().to_string(), top.save()?);
+                    if let Some(f) = fatigue.as_mut() {
+                        observers.insert(f.name().to_string(), f.save()?);
+                    }
                     for o in extra.iter_mut() {
                         observers.insert(o.name().to_string(), o.save()?);
                     }
@@ -280,13 +280,8 @@ pub fn run(
         }
     }
     {
-        let builtin: [&mut dyn Observer; 3] = [&mut envelopes, &mut gauges, &mut top];
-        for o in builtin
-            .into_iter()
-            .chain(extra.iter_mut().map(|o| &mut **o))
-        {
-            o.finish(&ctx, stop.as_ref())?;
-        }
+        let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
+        each(builtin, extra, |o| o.finish(&ctx, stop.as_ref()))?;
     }
     Ok(DynamicRun {
         t_reached: steps as f64 * spec.dt,
@@ -297,12 +292,45 @@ pub fn run(
         envelopes,
         gauges,
         top,
+        fatigue,
         iterations,
         cuts,
         retries,
         wall_seconds: t0.elapsed().as_secs_f64(),
         stop,
     })
+}
+
+/// The built-in observers, in their fixed order (the optional ones `None` when absent).
+type Builtins<'a> = [Option<&'a mut (dyn Observer + 'static)>; 4];
+
+fn builtins<'a>(
+    envelopes: &'a mut Envelopes,
+    gauges: &'a mut Gauges,
+    top: &'a mut TopHistory,
+    fatigue: &'a mut Option<Fatigue>,
+) -> Builtins<'a> {
+    [
+        Some(envelopes),
+        Some(gauges),
+        Some(top),
+        fatigue.as_mut().map(|f| f as &mut (dyn Observer + 'static)),
+    ]
+}
+
+/// Calls `f` on every observer: the built-in ones, then the caller's.
+fn each(
+    builtin: Builtins<'_>,
+    extra: &mut [&mut dyn Observer],
+    mut f: impl FnMut(&mut dyn Observer) -> Result<(), AppError>,
+) -> Result<(), AppError> {
+    for o in builtin.into_iter().flatten() {
+        f(o)?;
+    }
+    for o in extra.iter_mut() {
+        f(&mut **o)?;
+    }
+    Ok(())
 }
 
 /// Key numbers of a run over its envelope window, from every step: `(largest moment range, its arc

@@ -133,3 +133,115 @@ fn damage_scales_with_the_cube_of_the_range() {
     let one = miner([(100.0, 1.0)], &curve, 1.0);
     assert!((one * 10f64.powf(11.533 - 6.0) - 1.0).abs() < 1e-12);
 }
+
+use catena::fatigue::stress::{Fibre, PipeSection};
+
+fn paper_riser() -> PipeSection {
+    PipeSection {
+        od: 0.228,
+        wall: 0.0254,
+        contents_density: 726.0,
+        internal_pressure: 0.0,
+        water_density: 1025.0,
+        gravity: 9.80665,
+        water_depth: 1000.0,
+    }
+}
+
+/// The paper's riser section: A = 1.616676e-2 m², I = 8.425292e-5 m⁴; 1 kN·m gives 1.3531 MPa at the
+/// outer fibre and 100 kN (of wall tension) 6.186 MPa; `T_w − T_e ≈ −235 kN` at the seabed
+/// (contents 726 kg/m³ to the still water level, sea water outside), 0 at the surface.
+#[test]
+fn stress_recovery_numbers_of_the_paper_riser() {
+    let s = paper_riser();
+    assert!((s.area() / 1.616676e-2 - 1.0).abs() < 1e-6, "{}", s.area());
+    assert!(
+        (s.inertia() / 8.425292e-5 - 1.0).abs() < 1e-6,
+        "{}",
+        s.inertia()
+    );
+    let dm = s.radius(Fibre::Outer) / s.inertia() * 1e3 * 1e-6;
+    assert!((dm - 1.3531).abs() < 1e-4, "{dm}");
+    assert!((1e5 / s.area() * 1e-6 - 6.186).abs() < 1e-3);
+    let dw = s.wall_minus_effective(0.0);
+    println!("T_w − T_e at the seabed: {:.2} kN", dw / 1e3);
+    assert!((dw / 1e3 + 235.0).abs() < 1.0, "{dw}");
+    assert_eq!(s.wall_minus_effective(1000.0), 0.0);
+    // A sag moment stretches the top fibre.
+    let (top, bottom) = s.fibre_stresses(Fibre::Outer, 1e5, -1e3, 500.0);
+    assert!(top > bottom && (top - bottom - 2.0 * 1.3531e6).abs() < 1e2);
+}
+
+/// Wall against effective tension on a vertical column with a closed-form answer: a closed pipe of
+/// the paper's section hangs 200 m from a pinned top at 50 m below the surface in 1000 m of water.
+/// The statics give the effective tension (the submerged weight below, checked to 1e-6); the wall
+/// tension recovered from it equals the free body of the pipe below each node: its weight in air
+/// (steel and contents) plus the contents' pressure at the cut, less the sea's pressure on the
+/// bottom cap, `T_w = W_air + p_i A_i − p_o(bottom) A_o`, to 1e-4 (the line's stretch, T/EA ≈ 5e-5:
+/// buoyancy acts per unstretched length while the pressures act at the stretched positions). At the
+/// free end the wall is in compression by `p_o A_o − p_i A_i`.
+#[test]
+fn wall_tension_of_a_hanging_column() {
+    use catena_fe::beam::Section;
+    use catena_fe::model::{LineModel, LineSpec, Segment, Support};
+    use catena_fe::statics::{self, Placement, StaticOptions, StaticWorkspace};
+    let s = paper_riser();
+    let (g, rho_w, rho_s, rho_c) = (9.80665, 1025.0, 7850.0, 726.0);
+    let pi = std::f64::consts::PI;
+    let (a_o, a_i) = (
+        pi / 4.0 * s.od * s.od,
+        pi / 4.0 * (s.od - 2.0 * s.wall).powi(2),
+    );
+    let m = rho_s * s.area() + rho_c * a_i;
+    let w_sub = (m - rho_w * a_o) * g;
+    let (len, top_z) = (200.0, 950.0);
+    let model = LineModel::build(&LineSpec {
+        segments: vec![Segment {
+            length: len,
+            element_length: 5.0,
+            section: Section {
+                ea: 210e9 * s.area(),
+                ei: 210e9 * s.inertia(),
+            },
+            weight: w_sub,
+            mass: m,
+            od: s.od,
+        }],
+        top: Support::Pinned,
+        anchor: Support::Free,
+        seabed: None,
+        flexjoint: None,
+    })
+    .expect("model");
+    let nn = model.nodes();
+    let q: Vec<f64> = (0..nn)
+        .flat_map(|i| [0.0, top_z - model.arc[i], -pi / 2.0])
+        .collect();
+    let pl = Placement::new(&q);
+    let mut ws = StaticWorkspace::new(&model).expect("ws");
+    let mut u = vec![0.0; q.len()];
+    statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("statics");
+    let r = statics::line_results(&model, &pl, &u, &mut ws, |_, _| 0.0);
+    let z_b = r.z[nn - 1];
+    for i in 1..nn - 1 {
+        let below = len - model.arc[i];
+        assert!(
+            (r.tension[i] / (w_sub * below) - 1.0).abs() < 1e-6,
+            "T_e at {i}"
+        );
+        let tw = r.tension[i] + s.wall_minus_effective(r.z[i]);
+        let p_i = rho_c * g * (1000.0 - r.z[i]);
+        let p_o_bottom = rho_w * g * (1000.0 - z_b);
+        let closed = m * g * below + p_i * a_i - p_o_bottom * a_o;
+        assert!(
+            (tw - closed).abs() < 1e-4 * closed.abs(),
+            "node {i}: {tw} vs {closed}"
+        );
+    }
+    let end = s.wall_minus_effective(z_b);
+    println!(
+        "wall tension at the free end: {:.2} kN (compression)",
+        end / 1e3
+    );
+    assert!(end < 0.0);
+}

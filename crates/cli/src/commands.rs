@@ -127,6 +127,10 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             stop_after: opts.stop_after,
         },
     )?;
+    drop(extra);
+    let records = rec.records();
+    drop(rec);
+    h5::write_fatigue(&h5p, &r)?;
     let js = out.join("summary.json");
     write_json(&js, &report::dynamic_json(&r))?;
     plot::dynamic(&out.join("dynamic.png"), &r)?;
@@ -141,7 +145,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         t,
         "  wrote {} ({} records), {}, plots in {}",
         h5p.display(),
-        rec.records(),
+        records,
         js.display(),
         out.display()
     );

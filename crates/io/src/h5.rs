@@ -461,3 +461,33 @@ impl Observer for Recorder {
         self.truncate(records as usize).map_err(|e| e.to_string())
     }
 }
+
+/// Writes `/fatigue/damage_<fibre>` (one value per node, the larger of top and bottom; attributes
+/// `sn_curve`, `scf`, `counted_seconds`) into a results file after the run.
+pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
+    let Some(f) = &r.fatigue else {
+        return Ok(());
+    };
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    if file.link_exists("fatigue") {
+        file.unlink("fatigue").map_err(&err)?;
+    }
+    let g = file.create_group("fatigue").map_err(&err)?;
+    attr(&g, "sn_curve", &f.spec.curve_name).map_err(&err)?;
+    attr(&g, "scf", &f.spec.scf.to_string()).map_err(&err)?;
+    attr(&g, "counted_seconds", &f.counted_seconds().to_string()).map_err(&err)?;
+    for fib in &f.spec.fibres {
+        if let Some(d) = f.damage_of(*fib) {
+            vector(
+                &g,
+                &format!("damage_{}", fib.name()),
+                &d,
+                "1 (Miner damage of the counted record)",
+            )
+            .map_err(&err)?;
+        }
+    }
+    file.flush().map_err(&err)?;
+    Ok(())
+}

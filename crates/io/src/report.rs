@@ -161,6 +161,9 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         }
         Some(s) => (json!(s.to_string()), Value::Null),
     };
+    if let Some(f) = &r.fatigue {
+        js["fatigue"] = fatigue_json(r, f);
+    }
     let e = &r.envelopes;
     js["dynamic"] = json!({
         "completed": r.completed(),
@@ -265,8 +268,70 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             );
         }
     }
+    if let Some(f) = &r.fatigue {
+        let secs = f.counted_seconds();
+        for fib in &f.spec.fibres {
+            if let Some(d) = f.damage_of(*fib) {
+                let (i, dmax) =
+                    d.iter()
+                        .enumerate()
+                        .fold((0, 0.0f64), |b, (i, v)| if *v > b.1 { (i, *v) } else { b });
+                let _ = writeln!(
+                    t,
+                    "  fatigue ({}, SCF {}, {} fibre, {secs:.1} s counted): largest damage {dmax:.4e} at arc length {:.2} m; life {:.4e} years were the record repeated",
+                    f.spec.curve_name,
+                    f.spec.scf,
+                    fib.name(),
+                    r.model.line.arc[i],
+                    if dmax > 0.0 { secs / dmax / YEAR } else { f64::INFINITY }
+                );
+            }
+        }
+    }
     if let Some(s) = &r.stop {
         let _ = writeln!(t, "  STOPPED EARLY at t = {} s: {s}", r.t_reached);
     }
     t
+}
+
+const YEAR: f64 = 365.25 * 86400.0;
+
+/// The fatigue section of `summary.json`: per fibre, the damage of the counted record at every node,
+/// the largest and where, and the life were the record repeated all year (`T/D` years).
+pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue::observer::Fatigue) -> Value {
+    let arc = &r.model.line.arc;
+    let secs = f.counted_seconds();
+    let fibres: Vec<Value> = f
+        .spec
+        .fibres
+        .iter()
+        .filter_map(|fib| {
+            let d = f.damage_of(*fib)?;
+            let (i, dmax) =
+                d.iter()
+                    .enumerate()
+                    .fold((0, 0.0f64), |b, (i, v)| if *v > b.1 { (i, *v) } else { b });
+            let life = if dmax > 0.0 {
+                secs / dmax / YEAR
+            } else {
+                f64::INFINITY
+            };
+            Some(json!({
+                "fibre": fib.name(),
+                "damage": nums(&d),
+                "max_damage": num(dmax),
+                "max_damage_arc": arc[i],
+                "life_years_if_repeated": num(life),
+                "life_years_with_design_factor": f.spec.design_factor.map(|df| num(life / df)),
+            }))
+        })
+        .collect();
+    json!({
+        "sn_curve": f.spec.curve_name,
+        "scf": f.spec.scf,
+        "thickness_factor": f.factor / f.spec.scf,
+        "start": f.spec.start,
+        "counted_seconds": secs,
+        "fibres": fibres,
+    })
 }

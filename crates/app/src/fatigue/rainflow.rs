@@ -32,7 +32,7 @@ pub struct Cycle {
 /// A streaming rainflow counter: push samples, then [`Rainflow::finish`]; each counted cycle is
 /// handed to a callback as soon as it is found. Allocation: only the stack's growth (amortised; it
 /// does not grow once it holds the series' largest decreasing run of reversals).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Rainflow {
     stack: Vec<f64>,
     last: Option<f64>,

@@ -6,6 +6,10 @@ use catena_fe::dynamics::{DynamicSettings, Scheme};
 use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::motion::TopMotion;
+
+use crate::fatigue::observer::FatigueSpec;
+use crate::fatigue::sn::SnCurve;
+use crate::fatigue::stress::{Fibre, PipeSection};
 use catena_fe::statics::EndPositions;
 use catena_fe::vessel::{RaoTable, Vessel};
 use catena_fe::waves::{Direction, Waves};
@@ -270,6 +274,53 @@ fn plus_x() -> String {
     "+x".into()
 }
 
+/// A user S-N curve in `[fatigue]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SnTable {
+    pub m1: f64,
+    pub log_a1: f64,
+    pub m2: Option<f64>,
+    pub log_a2: Option<f64>,
+    pub knee_cycles: Option<f64>,
+    #[serde(default)]
+    pub thickness_exponent: f64,
+}
+
+/// `sn_curve`: a name or a table.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+#[allow(missing_docs)]
+pub enum SnKey {
+    Name(String),
+    Table(SnTable),
+}
+
+/// `[fatigue]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct FatigueTable {
+    pub sn_curve: SnKey,
+    #[serde(default = "one")]
+    pub scf: f64,
+    #[serde(default = "outer")]
+    pub fibres: Vec<String>,
+    pub design_factor: Option<f64>,
+    pub start: Option<f64>,
+    pub contents_density: Option<f64>,
+    #[serde(default)]
+    pub internal_pressure: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn outer() -> Vec<String> {
+    vec!["outer".into()]
+}
+
 /// `[structural_damping]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -323,6 +374,8 @@ pub struct DynamicSpec {
     pub vessel: Option<Vessel>,
     /// Stiffness-proportional structural damping `β = ζ·T/π` (s), if `[structural_damping]`.
     pub structural_damping: Option<f64>,
+    /// Fatigue counting (`[fatigue]`), if any.
+    pub fatigue: Option<FatigueSpec>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -356,6 +409,7 @@ pub struct RiserFile {
     pub waves: Option<WavesTable>,
     pub vessel: Option<VesselTable>,
     pub structural_damping: Option<StructuralDampingTable>,
+    pub fatigue: Option<FatigueTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
 }
@@ -395,6 +449,7 @@ pub struct RiserScene {
 struct Site {
     length: f64,
     water_depth: f64,
+    water_density: f64,
     gravity: f64,
     top_x: f64,
 }
@@ -678,6 +733,7 @@ impl RiserScene {
                 Site {
                     length: l.length,
                     water_depth: env.water_depth,
+                    water_density: env.water_density,
                     gravity: env.gravity,
                     top_x: e.top_x,
                 },
@@ -689,6 +745,7 @@ impl RiserScene {
                     (raw.waves.is_some(), "waves"),
                     (raw.vessel.is_some(), "vessel"),
                     (raw.structural_damping.is_some(), "structural_damping"),
+                    (raw.fatigue.is_some(), "fatigue"),
                     (!raw.gauge.is_empty(), "gauge"),
                 ] {
                     if present {
@@ -1045,7 +1102,12 @@ fn dynamic_spec(
         }
         None => None,
     };
+    let fatigue = match &raw.fatigue {
+        Some(t) => Some(fatigue_of(file, raw, t, d, site)?),
+        None => None,
+    };
     Ok(DynamicSpec {
+        fatigue,
         structural_damping,
         environment: Environment {
             hydro,
@@ -1208,4 +1270,143 @@ fn vessel_of(
         ));
     }
     Ok(Vessel::new(table, site.top_x - dx, [dx, dz], waves))
+}
+
+/// `[fatigue]` → what the fatigue observer counts (see `docs/scene.md`).
+fn fatigue_of(
+    file: &str,
+    raw: &RiserFile,
+    t: &FatigueTable,
+    d: &DynamicTable,
+    site: Site,
+) -> Result<FatigueSpec, SceneError> {
+    let l = &raw.line;
+    let wall = l.wall.ok_or_else(|| {
+        invalid(
+            file,
+            "line.wall",
+            "the wall thickness in m (fatigue needs the section's stresses)",
+        )
+    })?;
+    let (curve, curve_name) = match &t.sn_curve {
+        SnKey::Name(n) => (
+            SnCurve::dnv(n).ok_or_else(|| {
+                invalid(
+                    file,
+                    "fatigue.sn_curve",
+                    format!(
+                        "one of {} or a table {{ m1, log_a1, m2, log_a2, knee_cycles }}, got \"{n}\"",
+                        crate::fatigue::sn::NAMES.join(", ")
+                    ),
+                )
+            })?,
+            n.clone(),
+        ),
+        SnKey::Table(c) => {
+            for (k, v) in [("m1", c.m1), ("log_a1", c.log_a1)] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(invalid(file, format!("fatigue.sn_curve.{k}"), "a number > 0"));
+                }
+            }
+            let lower = match (c.m2, c.log_a2, c.knee_cycles) {
+                (Some(m2), Some(a2), Some(knee)) if m2 > 0.0 && a2 > 0.0 && knee > 0.0 => {
+                    Some((m2, a2, knee))
+                }
+                (None, None, None) => None,
+                _ => {
+                    return Err(invalid(
+                        file,
+                        "fatigue.sn_curve",
+                        "m2, log_a2 and knee_cycles all > 0, or none of them (a single slope)",
+                    ))
+                }
+            };
+            (
+                SnCurve {
+                    m1: c.m1,
+                    log_a1: c.log_a1,
+                    lower: lower.map(|(m2, a2, _)| (m2, a2)),
+                    knee_cycles: lower.map(|(_, _, k)| k),
+                    thickness_exponent: c.thickness_exponent,
+                },
+                "user".to_string(),
+            )
+        }
+    };
+    if !(t.scf.is_finite() && t.scf >= 1.0) {
+        return Err(invalid(
+            file,
+            "fatigue.scf",
+            format!("a stress concentration factor >= 1, got {}", t.scf),
+        ));
+    }
+    let mut fibres = Vec::new();
+    for (i, f) in t.fibres.iter().enumerate() {
+        let fib = match f.as_str() {
+            "outer" => Fibre::Outer,
+            "inner" => Fibre::Inner,
+            other => {
+                return Err(invalid(
+                    file,
+                    format!("fatigue.fibres[{i}]"),
+                    format!("\"outer\" or \"inner\", got \"{other}\""),
+                ))
+            }
+        };
+        if !fibres.contains(&fib) {
+            fibres.push(fib);
+        }
+    }
+    if fibres.is_empty() {
+        return Err(invalid(
+            file,
+            "fatigue.fibres",
+            "at least one of \"outer\", \"inner\"",
+        ));
+    }
+    if let Some(f) = t.design_factor {
+        positive(file, "fatigue.design_factor", f, "a design fatigue factor")?;
+    }
+    let start = t.start.unwrap_or(d.envelope_start);
+    if !(start.is_finite() && start >= 0.0 && start < d.duration) {
+        return Err(invalid(file, "fatigue.start", "a time in [0, duration) s"));
+    }
+    let contents_density = t.contents_density.or(l.contents_density).ok_or_else(|| {
+        invalid(
+            file,
+            "fatigue.contents_density",
+            "the contents density in kg/m³ (here or in [line]): the wall tension needs it",
+        )
+    })?;
+    if !(contents_density.is_finite() && contents_density >= 0.0) {
+        return Err(invalid(
+            file,
+            "fatigue.contents_density",
+            "a density >= 0 kg/m³",
+        ));
+    }
+    if !t.internal_pressure.is_finite() {
+        return Err(invalid(
+            file,
+            "fatigue.internal_pressure",
+            "a pressure in Pa",
+        ));
+    }
+    Ok(FatigueSpec {
+        curve,
+        curve_name,
+        scf: t.scf,
+        fibres,
+        design_factor: t.design_factor,
+        start,
+        section: PipeSection {
+            od: l.od,
+            wall,
+            contents_density,
+            internal_pressure: t.internal_pressure,
+            water_density: site.water_density,
+            gravity: site.gravity,
+            water_depth: site.water_depth,
+        },
+    })
 }

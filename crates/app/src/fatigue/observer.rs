@@ -1,0 +1,167 @@
+//! Fatigue as an observer of a run: at every step from `start`, the stresses at the top and bottom of
+//! each chosen fibre at every node go into a streaming rainflow counter, and every counted cycle's
+//! Miner damage is added at once (`n/N(SCF·t_corr·Δσ)`); at the end the residue counts as half
+//! cycles. No second pass over the output, and nothing of the history is kept.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use super::rainflow::{Cycle, Rainflow};
+use super::sn::SnCurve;
+use super::stress::{Fibre, PipeSection};
+use crate::error::AppError;
+use crate::observe::{Control, Observer, RunContext, StepView, Stop};
+
+/// What a `[fatigue]` table asks for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FatigueSpec {
+    /// The S-N curve.
+    pub curve: SnCurve,
+    /// Its name as given (a DNV name, or "user").
+    pub curve_name: String,
+    /// Stress concentration factor.
+    pub scf: f64,
+    /// The fibres to count.
+    pub fibres: Vec<Fibre>,
+    /// The design fatigue factor, reported separately, if given.
+    pub design_factor: Option<f64>,
+    /// Counting starts at this time, s (the ramp and the settling are discarded).
+    pub start: f64,
+    /// The pipe.
+    pub section: PipeSection,
+}
+
+/// The fatigue observer: damage per node, fibre and side (top, bottom).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fatigue {
+    /// The specification.
+    pub spec: FatigueSpec,
+    /// The factor on every stress range: SCF × thickness correction.
+    pub factor: f64,
+    counters: Vec<Rainflow>,
+    /// Miner damage, indexed `(node·fibres + fibre)·2 + side` (side 0 top, 1 bottom).
+    pub damage: Vec<f64>,
+    /// First and last time counted, s.
+    pub span: (Option<f64>, f64),
+    n: usize,
+}
+
+#[derive(Serialize, Deserialize)]
+struct Saved {
+    counters: Vec<Rainflow>,
+    damage: Vec<f64>,
+    first: Option<f64>,
+    last: f64,
+}
+
+impl Fatigue {
+    /// The observer for `n` nodes.
+    pub fn new(spec: FatigueSpec, n: usize) -> Self {
+        let factor = spec.scf * spec.curve.thickness_factor(spec.section.wall);
+        let m = n * spec.fibres.len() * 2;
+        Self {
+            spec,
+            factor,
+            counters: vec![Rainflow::new(); m],
+            damage: vec![0.0; m],
+            span: (None, 0.0),
+            n,
+        }
+    }
+
+    fn take(&mut self, s: &StepView<'_>) {
+        if s.t < self.spec.start - 1e-9 {
+            return;
+        }
+        self.span.0.get_or_insert(s.t);
+        self.span.1 = s.t;
+        let r = s.results;
+        let nf = self.spec.fibres.len();
+        let (curve, factor) = (self.spec.curve, self.factor);
+        for i in 0..self.n {
+            for (k, f) in self.spec.fibres.iter().enumerate() {
+                let (top, bottom) =
+                    self.spec
+                        .section
+                        .fibre_stresses(*f, r.tension[i], r.moment[i], r.z[i]);
+                for (side, sigma) in [(0, top), (1, bottom)] {
+                    let j = (i * nf + k) * 2 + side;
+                    let d = &mut self.damage[j];
+                    self.counters[j].push(sigma * 1e-6, &mut |c: Cycle| {
+                        *d += c.count / curve.cycles(factor * c.range);
+                    });
+                }
+            }
+        }
+    }
+
+    /// The damage per node for a fibre, the larger of its top and bottom.
+    pub fn damage_of(&self, fibre: Fibre) -> Option<Vec<f64>> {
+        let k = self.spec.fibres.iter().position(|f| *f == fibre)?;
+        let nf = self.spec.fibres.len();
+        Some(
+            (0..self.n)
+                .map(|i| {
+                    let j = (i * nf + k) * 2;
+                    self.damage[j].max(self.damage[j + 1])
+                })
+                .collect(),
+        )
+    }
+
+    /// The seconds counted (from the first counted step to the last).
+    pub fn counted_seconds(&self) -> f64 {
+        self.span.0.map_or(0.0, |a| self.span.1 - a)
+    }
+}
+
+impl Observer for Fatigue {
+    fn name(&self) -> &'static str {
+        "fatigue"
+    }
+    fn start(
+        &mut self,
+        _: &RunContext<'_>,
+        s: &StepView<'_>,
+        restarted: bool,
+    ) -> Result<(), AppError> {
+        if !restarted {
+            self.take(s);
+        }
+        Ok(())
+    }
+    fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        self.take(s);
+        Ok(Control::Continue)
+    }
+    fn finish(&mut self, _: &RunContext<'_>, _: Option<&Stop>) -> Result<(), AppError> {
+        let (curve, factor) = (self.spec.curve, self.factor);
+        for (c, d) in self.counters.iter_mut().zip(self.damage.iter_mut()) {
+            std::mem::take(c).finish(&mut |cy: Cycle| {
+                *d += cy.count / curve.cycles(factor * cy.range);
+            });
+        }
+        Ok(())
+    }
+    fn save(&mut self) -> Result<Value, AppError> {
+        Ok(serde_json::to_value(Saved {
+            counters: self.counters.clone(),
+            damage: self.damage.clone(),
+            first: self.span.0,
+            last: self.span.1,
+        })
+        .unwrap_or(Value::Null))
+    }
+    fn restore(&mut self, v: &Value) -> Result<(), String> {
+        let s: Saved = serde_json::from_value(v.clone()).map_err(|e| format!("fatigue: {e}"))?;
+        if s.counters.len() != self.counters.len() || s.damage.len() != self.damage.len() {
+            return Err(
+                "fatigue: the saved counters do not fit the scene's nodes and fibres".into(),
+            );
+        }
+        self.counters = s.counters;
+        self.damage = s.damage;
+        self.span = (s.first, s.last);
+        Ok(())
+    }
+}
