@@ -274,6 +274,7 @@ fn a_storm_resynthesises_from_its_recorded_components() {
         .expect("case")
         .edit("duration = 1800.0 ", "duration = 30.0 ")
         .edit("envelope_start = 200.0 ", "envelope_start = 20.0 ")
+        .edit("\nstart = 200.0 ", "\nstart = 20.0 ")
         .edit("ramp = 100.0 ", "ramp = 10.0 ");
     std::fs::copy(
         root().join("cases/scr1000/semi-rao.csv"),

@@ -41,6 +41,8 @@ pub struct Fatigue {
     counters: Vec<Rainflow>,
     /// Miner damage, indexed `(node·fibres + fibre)·2 + side` (side 0 top, 1 bottom).
     pub damage: Vec<f64>,
+    /// Precomputed: `1/A`, `r/I` per fibre, and `T_w − T_e = k0 + k1·(d − z)`.
+    coef: (f64, [f64; 2], f64, f64),
     /// First and last time counted, s.
     pub span: (Option<f64>, f64),
     n: usize,
@@ -59,7 +61,22 @@ impl Fatigue {
     pub fn new(spec: FatigueSpec, n: usize) -> Self {
         let factor = spec.scf * spec.curve.thickness_factor(spec.section.wall);
         let m = n * spec.fibres.len() * 2;
+        let sec = &spec.section;
+        let pi = std::f64::consts::PI;
+        let id = sec.od - 2.0 * sec.wall;
+        let (a_i, a_o) = (pi / 4.0 * id * id, pi / 4.0 * sec.od * sec.od);
+        let mut r_over_i = [0.0; 2];
+        for (k, f) in spec.fibres.iter().enumerate().take(2) {
+            r_over_i[k] = sec.radius(*f) / sec.inertia();
+        }
+        let coef = (
+            1.0 / sec.area(),
+            r_over_i,
+            sec.internal_pressure * a_i,
+            sec.gravity * (sec.contents_density * a_i - sec.water_density * a_o),
+        );
         Self {
+            coef,
             spec,
             factor,
             counters: vec![Rainflow::new(); m],
