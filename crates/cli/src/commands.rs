@@ -269,3 +269,127 @@ pub fn convergence(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result
     );
     Ok(t)
 }
+
+/// `catena fatigue STUDY.toml --out DIR [--jobs N]`: every storm of the study as a full dynamic run
+/// (in parallel over storms), each storm's result kept in `DIR/storms/<id>.json` (a rerun skips the
+/// storms already done with the same scene), then `fatigue.h5`, `life.csv`, `summary.json`,
+/// `life.png` and `storms.png`.
+pub fn fatigue(
+    study_path: &Path,
+    out: &Path,
+    jobs: usize,
+    progress: bool,
+) -> Result<String, AppError> {
+    use catena::fatigue::study::{run_storm, StormResult, Study};
+    use rayon::prelude::*;
+    let t0 = std::time::Instant::now();
+    let study = Study::read(study_path)?;
+    let touchdown = statics::solve(study.base.clone())?.summary.touchdown_arc;
+    let dir = out.join("storms");
+    std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
+    let n = study.storms.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let one = |(storm, scene): &(
+        catena::fatigue::study::Storm,
+        catena::scene::riser::RiserScene,
+    )|
+     -> Result<(StormResult, bool), AppError> {
+        let path = dir.join(format!("{}.json", storm.id));
+        let hash = catena::scene::text_hash(&scene.text);
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Ok(r) = serde_json::from_str::<StormResult>(&text) {
+                if r.scene_hash == hash && r.error.is_none() && r.storm == *storm {
+                    done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                    return Ok((r, true));
+                }
+            }
+        }
+        let r = run_storm(storm, scene)?;
+        let tmp = path.with_extension("json.tmp");
+        let text = serde_json::to_string(&r).map_err(|e| AppError::Output {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
+        std::fs::rename(&tmp, &path).map_err(|e| AppError::io(&path, e))?;
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+        if progress {
+            let el = t0.elapsed().as_secs_f64();
+            eprintln!(
+                "  storm {} (Hs {} m, Tp {} s): {:.1} s{}; {k}/{n} done, {:.0} s elapsed",
+                storm.id,
+                storm.hs,
+                storm.tp,
+                r.wall_seconds,
+                r.error
+                    .as_ref()
+                    .map_or(String::new(), |e| format!(", STOPPED EARLY: {e}")),
+                el
+            );
+        }
+        Ok((r, false))
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .build()
+        .map_err(|e| AppError::Run {
+            file: study.file.clone(),
+            message: format!("--jobs: cannot start {jobs} threads: {e}"),
+        })?;
+    let results: Vec<Result<(StormResult, bool), AppError>> =
+        pool.install(|| study.storms.par_iter().map(one).collect());
+    let mut rs = Vec::with_capacity(n);
+    let mut reused = 0;
+    for r in results {
+        let (r, old) = r?;
+        reused += usize::from(old);
+        rs.push(r);
+    }
+    let l = catena_io::fatigue::lives(&study, &rs);
+    std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    catena_io::fatigue::write_h5(&out.join("fatigue.h5"), &rs, &l)?;
+    let csv = out.join("life.csv");
+    std::fs::write(&csv, catena_io::fatigue::life_csv(&l)).map_err(|e| AppError::io(&csv, e))?;
+    let wall = t0.elapsed().as_secs_f64();
+    let js = catena_io::fatigue::summary_json(&study, &rs, &l, touchdown, wall);
+    write_json(&out.join("summary.json"), &js)?;
+    let title = format!("{} — fatigue life, {} storms", study.base.title, n);
+    catena_io::fatigue::life_png(&out.join("life.png"), &l, touchdown, &title)?;
+    let (i, life, fibre) = catena_io::fatigue::minimum(&l).unwrap_or((0, f64::NAN, String::new()));
+    let shares = catena::fatigue::study::shares(&rs, &fibre, i);
+    catena_io::fatigue::storms_png(
+        &out.join("storms.png"),
+        &shares,
+        &format!(
+            "each storm's share of the damage at {:.1} m ({fibre} fibre)",
+            l.arc[i]
+        ),
+    )?;
+    let mut t = format!(
+        "fatigue study {}: {n} storms ({reused} from an earlier run), {:.1} s wall\n",
+        study.file, wall
+    );
+    let _ = writeln!(
+        t,
+        "  minimum life {life:.4e} years at arc length {:.2} m ({fibre} fibre); static touchdown at {}",
+        l.arc[i],
+        touchdown.map_or("none".into(), |x| format!("{x:.2} m"))
+    );
+    let mut top: Vec<(i64, f64)> = shares.clone();
+    top.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let _ = writeln!(
+        t,
+        "  largest shares: {}",
+        top.iter()
+            .take(5)
+            .map(|(id, s)| format!("storm {id} {:.1} %", 100.0 * s))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        t,
+        "  wrote fatigue.h5, life.csv, summary.json, life.png and storms.png in {}",
+        out.display()
+    );
+    Ok(t)
+}

@@ -74,6 +74,22 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Fatigue study: the scene run once per storm of a storm table (in parallel over storms), the
+    /// annual damage and the life along the arc. Writes DIR/fatigue.h5, life.csv, summary.json,
+    /// life.png, storms.png, and DIR/storms/<id>.json per storm (a rerun skips those done).
+    Fatigue {
+        /// The study file (TOML with [study] and [fatigue]).
+        study: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Storms run at once.
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
+        /// Do not print a line per storm.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Rainflow counting (ASTM E1049-85) of a series in a CSV file: writes CYCLES.csv with rows
     /// range,mean,count in the order found; with --sn, prints Miner's damage of the series.
     Rainflow {
@@ -164,6 +180,12 @@ fn main() -> ExitCode {
             },
         )
         .map(|t| print!("{t}")),
+        Command::Fatigue {
+            study,
+            out,
+            jobs,
+            quiet,
+        } => commands::fatigue(&study, &out, jobs, !quiet).map(|t| print!("{t}")),
         Command::Rainflow {
             series,
             out,

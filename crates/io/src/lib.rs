@@ -9,6 +9,7 @@
 //! - [`plot`]: PNG plots (plotters, with an embedded DejaVu Sans font so no system font is needed).
 
 pub mod convergence;
+pub mod fatigue;
 pub mod h5;
 pub mod plot;
 pub mod report;

@@ -6,3 +6,4 @@ pub mod observer;
 pub mod rainflow;
 pub mod sn;
 pub mod stress;
+pub mod study;
