@@ -11,17 +11,21 @@
 //! - [`checkpoint`]: checkpoints (State, solver memory, observers' states, scene hash, version);
 //! - [`convergence`]: the convergence study (what accuracy costs in time);
 //! - [`soil_test`]: the soil element test;
-//! - [`fatigue`]: rainflow counting and S-N curves;
+//! - [`fatigue`]: rainflow counting, S-N curves, stress recovery (pure);
+//! - [`fatigue_observer`]: fatigue damage counted during a run;
+//! - [`study`]: the storm-table fatigue study;
 //! - [`error`]: the error types.
 
 pub mod checkpoint;
 pub mod convergence;
 pub mod error;
 pub mod fatigue;
+pub mod fatigue_observer;
 pub mod observe;
 pub mod run;
 pub mod scene;
 pub mod soil_test;
 pub mod statics;
+pub mod study;
 
 pub use error::{AppError, SceneError};

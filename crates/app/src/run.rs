@@ -15,7 +15,7 @@ use catena_fe::dynamics::{self, DynWorkspace, DynamicModel, StepInfo};
 
 use crate::checkpoint::{Checkpoint, VERSION};
 use crate::error::AppError;
-use crate::fatigue::observer::Fatigue;
+use crate::fatigue_observer::Fatigue;
 use crate::observe::{
     Control, Envelopes, Gauges, Observer, RunContext, StepView, Stop, TopHistory,
 };

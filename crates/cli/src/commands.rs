@@ -280,7 +280,7 @@ pub fn fatigue(
     jobs: usize,
     progress: bool,
 ) -> Result<String, AppError> {
-    use catena::fatigue::study::{run_storm, StormResult, Study};
+    use catena::study::{run_storm, StormResult, Study};
     use rayon::prelude::*;
     let t0 = std::time::Instant::now();
     let study = Study::read(study_path)?;
@@ -290,7 +290,7 @@ pub fn fatigue(
     let n = study.storms.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let one = |(storm, scene): &(
-        catena::fatigue::study::Storm,
+        catena::study::Storm,
         catena::scene::riser::RiserScene,
     )|
      -> Result<(StormResult, bool), AppError> {
@@ -356,7 +356,7 @@ pub fn fatigue(
     let title = format!("{} — fatigue life, {} storms", study.base.title, n);
     catena_io::fatigue::life_png(&out.join("life.png"), &l, touchdown, &title)?;
     let (i, life, fibre) = catena_io::fatigue::minimum(&l).unwrap_or((0, f64::NAN, String::new()));
-    let shares = catena::fatigue::study::shares(&rs, &fibre, i);
+    let shares = catena::study::shares(&rs, &fibre, i);
     catena_io::fatigue::storms_png(
         &out.join("storms.png"),
         &shares,

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::fatigue::study::{annual_damage, shares, StormResult, Study};
+use catena::study::{annual_damage, shares, StormResult, Study};
 use catena::AppError;
 use plotters::prelude::*;
 use serde_json::{json, Value};

@@ -298,7 +298,7 @@ const YEAR: f64 = 365.25 * 86400.0;
 
 /// The fatigue section of `summary.json`: per fibre, the damage of the counted record at every node,
 /// the largest and where, and the life were the record repeated all year (`T/D` years).
-pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue::observer::Fatigue) -> Value {
+pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue_observer::Fatigue) -> Value {
     let arc = &r.model.line.arc;
     let secs = f.counted_seconds();
     let fibres: Vec<Value> = f

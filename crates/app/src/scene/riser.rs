@@ -7,9 +7,9 @@ use catena_fe::environment::{Environment, Hydro};
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::motion::TopMotion;
 
-use crate::fatigue::observer::FatigueSpec;
 use crate::fatigue::sn::SnCurve;
 use crate::fatigue::stress::{Fibre, PipeSection};
+use crate::fatigue::FatigueSpec;
 use catena_fe::statics::EndPositions;
 use catena_fe::vessel::{RaoTable, Vessel};
 use catena_fe::waves::{Direction, Waves};

@@ -6,30 +6,11 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use super::rainflow::{Cycle, Rainflow};
-use super::sn::SnCurve;
-use super::stress::{Fibre, PipeSection};
 use crate::error::AppError;
+use crate::fatigue::rainflow::{Cycle, Rainflow};
+use crate::fatigue::stress::Fibre;
+use crate::fatigue::FatigueSpec;
 use crate::observe::{Control, Observer, RunContext, StepView, Stop};
-
-/// What a `[fatigue]` table asks for.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FatigueSpec {
-    /// The S-N curve.
-    pub curve: SnCurve,
-    /// Its name as given (a DNV name, or "user").
-    pub curve_name: String,
-    /// Stress concentration factor.
-    pub scf: f64,
-    /// The fibres to count.
-    pub fibres: Vec<Fibre>,
-    /// The design fatigue factor, reported separately, if given.
-    pub design_factor: Option<f64>,
-    /// Counting starts at this time, s (the ramp and the settling are discarded).
-    pub start: f64,
-    /// The pipe.
-    pub section: PipeSection,
-}
 
 /// The fatigue observer: damage per node, fibre and side (top, bottom).
 #[derive(Debug, Clone, PartialEq)]
