@@ -117,17 +117,6 @@ impl Observer for Fatigue {
     fn name(&self) -> &'static str {
         "fatigue"
     }
-    fn start(
-        &mut self,
-        _: &RunContext<'_>,
-        s: &StepView<'_>,
-        restarted: bool,
-    ) -> Result<(), AppError> {
-        if !restarted {
-            self.take(s);
-        }
-        Ok(())
-    }
     fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         self.take(s);
         Ok(Control::Continue)

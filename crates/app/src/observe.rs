@@ -87,14 +87,18 @@ pub trait Observer {
     fn name(&self) -> &'static str;
 
     /// Called once before the first step: with the initial state (step 0) on a fresh run, or with the
-    /// restored state on a restart (`restarted`; its state was restored just before).
+    /// restored state on a restart (`restarted`; its state was restored just before). By default the
+    /// initial state of a fresh run is observed like a step, and a restart observes nothing (the
+    /// restored state was observed before the checkpoint).
     fn start(
         &mut self,
         ctx: &RunContext<'_>,
         first: &StepView<'_>,
         restarted: bool,
     ) -> Result<(), AppError> {
-        let _ = (ctx, first, restarted);
+        if !restarted {
+            self.step(ctx, first)?;
+        }
         Ok(())
     }
 
@@ -232,17 +236,6 @@ impl Observer for Envelopes {
     fn name(&self) -> &'static str {
         "envelopes"
     }
-    fn start(
-        &mut self,
-        _: &RunContext<'_>,
-        s: &StepView<'_>,
-        restarted: bool,
-    ) -> Result<(), AppError> {
-        if !restarted && s.envelope {
-            self.update(s.results);
-        }
-        Ok(())
-    }
     fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         if s.envelope {
             self.update(s.results);
@@ -365,17 +358,6 @@ impl Observer for Gauges {
     fn name(&self) -> &'static str {
         "gauges"
     }
-    fn start(
-        &mut self,
-        ctx: &RunContext<'_>,
-        s: &StepView<'_>,
-        restarted: bool,
-    ) -> Result<(), AppError> {
-        if !restarted {
-            self.take(&ctx.model.line.arc, s);
-        }
-        Ok(())
-    }
     fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         self.take(&ctx.model.line.arc, s);
         Ok(Control::Continue)
@@ -432,17 +414,6 @@ impl TopHistory {
 impl Observer for TopHistory {
     fn name(&self) -> &'static str {
         "top"
-    }
-    fn start(
-        &mut self,
-        _: &RunContext<'_>,
-        s: &StepView<'_>,
-        restarted: bool,
-    ) -> Result<(), AppError> {
-        if !restarted {
-            self.take(s);
-        }
-        Ok(())
     }
     fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         self.take(s);

@@ -2,6 +2,7 @@
 //! mesh series must predict a finer run it did not see; the errors must shrink with refinement; the
 //! values must not depend on how many runs go at once; and the files must be written.
 
+#[path = "../../app/tests/common/mod.rs"]
 mod common;
 use common::Edit;
 

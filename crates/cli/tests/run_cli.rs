@@ -1,6 +1,7 @@
 //! `catena run` through the command layer: the /dynamic layout in results.h5, a failed run that
 //! keeps its results, restart into the same directory continuing results.h5, SIGTERM and SIGKILL.
 
+#[path = "../../app/tests/common/mod.rs"]
 mod common;
 use common::Edit;
 

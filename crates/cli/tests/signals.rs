@@ -3,6 +3,7 @@
 //! they spawn would otherwise inherit (and keep locked) the HDF5 files other tests of the same
 //! process have open.
 
+#[path = "../../app/tests/common/mod.rs"]
 mod common;
 use common::Edit;
 

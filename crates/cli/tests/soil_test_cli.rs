@@ -1,5 +1,6 @@
 //! `catena soil-test`: the paper's Figures 3–6 as cases, the CSV interface, and bad input.
 
+#[path = "../../app/tests/common/mod.rs"]
 mod common;
 use common::Edit;
 

@@ -1,5 +1,6 @@
 //! `catena static`: output files, the HDF5 layout other programs read, and bad input.
 
+#[path = "../../app/tests/common/mod.rs"]
 mod common;
 use common::Edit;
 

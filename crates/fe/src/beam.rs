@@ -60,6 +60,34 @@ pub struct BeamResponse {
     pub chord_angle: f64,
 }
 
+/// The corotational transformation of a chord `(dx, dz)`: its length, `r`, `q` and the rows
+/// `b1 = e3 − q/L`, `b2 = e6 − q/L` of `B` (the module docs).
+struct Basis {
+    l: f64,
+    r: [f64; 6],
+    q: [f64; 6],
+    b1: [f64; 6],
+    b2: [f64; 6],
+}
+
+#[inline]
+fn basis(dx: f64, dz: f64) -> Basis {
+    let l = (dx * dx + dz * dz).sqrt();
+    let c = dx / l;
+    let s = dz / l;
+    let r = [-c, -s, 0.0, c, s, 0.0];
+    let q = [s, -c, 0.0, -s, c, 0.0];
+    let mut b1 = [0.0; 6];
+    let mut b2 = [0.0; 6];
+    for i in 0..6 {
+        b1[i] = -q[i] / l;
+        b2[i] = -q[i] / l;
+    }
+    b1[2] += 1.0;
+    b2[5] += 1.0;
+    Basis { l, r, q, b1, b2 }
+}
+
 /// Stiffness-proportional (Rayleigh) structural damping of an element, on its basic (material)
 /// deformation rates only: with `ḋ_b = B·v` (extension rate and end-rotation rates relative to the
 /// chord, `B` as above),
@@ -91,18 +119,7 @@ pub fn structural_damping(
     v: &[f64; 6],
     with_damping: bool,
 ) -> DampingResponse {
-    let l = (dx * dx + dz * dz).sqrt();
-    let (c, s) = (dx / l, dz / l);
-    let r = [-c, -s, 0.0, c, s, 0.0];
-    let q = [s, -c, 0.0, -s, c, 0.0];
-    let mut b1 = [0.0; 6];
-    let mut b2 = [0.0; 6];
-    for i in 0..6 {
-        b1[i] = -q[i] / l;
-        b2[i] = -q[i] / l;
-    }
-    b1[2] += 1.0;
-    b2[5] += 1.0;
+    let Basis { r, b1, b2, .. } = basis(dx, dz);
     let dot = |a: &[f64; 6]| a.iter().zip(v).map(|(x, y)| x * y).sum::<f64>();
     let (e0, e1, e2) = (dot(&r), dot(&b1), dot(&b2));
     let ka = beta * sec.ea / l0;
@@ -173,9 +190,7 @@ pub fn corotational_beam_chord(
     sec: &Section,
     with_stiffness: bool,
 ) -> BeamResponse {
-    let l = (dx * dx + dz * dz).sqrt();
-    let c = dx / l;
-    let s = dz / l;
+    let Basis { l, r, q, b1, b2 } = basis(dx, dz);
     let beta = dz.atan2(dx);
     let t1 = wrap(theta1 - beta);
     let t2 = wrap(theta2 - beta);
@@ -185,17 +200,6 @@ pub fn corotational_beam_chord(
     let n = ka * u;
     let m1 = kb * (4.0 * t1 + 2.0 * t2);
     let m2 = kb * (2.0 * t1 + 4.0 * t2);
-    let r = [-c, -s, 0.0, c, s, 0.0];
-    let q = [s, -c, 0.0, -s, c, 0.0];
-    // Rows of B: b0 = r, b1 = e3 − q/L, b2 = e6 − q/L.
-    let mut b1 = [0.0; 6];
-    let mut b2 = [0.0; 6];
-    for i in 0..6 {
-        b1[i] = -q[i] / l;
-        b2[i] = -q[i] / l;
-    }
-    b1[2] += 1.0;
-    b2[5] += 1.0;
     let mut force = [0.0; 6];
     for i in 0..6 {
         force[i] = r[i] * n + b1[i] * m1 + b2[i] * m2;

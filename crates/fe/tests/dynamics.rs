@@ -1,6 +1,8 @@
 //! Verification of the time integration against cases.md §5: HHT-α on one degree of freedom, a
 //! tensioned beam's natural frequencies, and the rigid-limit pendulum.
 
+mod common;
+
 use catena_fe::analytical::tensioned_beam_frequency;
 use catena_fe::beam::Section;
 use catena_fe::dynamics::{
@@ -28,60 +30,11 @@ fn hht_single_dof_numbers() {
     }
 }
 
-/// The largest eigenvalue modulus of the one-step map of `(u, v, a)` for `ü + ω²u = 0`, Δt = 1
-/// (the recurrence of `sdof_free_vibration`), found as the roots of its characteristic cubic
-/// (Durand–Kerner).
+/// The largest eigenvalue modulus of the one-step map of `ü + ω²u = 0`, Δt = 1 (the recurrence of
+/// `sdof_free_vibration`).
 fn spectral_radius(scheme: Scheme, omega2: f64) -> f64 {
-    let (alpha, beta, gamma) = scheme.coefficients();
-    let step = |x: [f64; 3]| {
-        let (u, v, a) = (x[0], x[1], x[2]);
-        let up = u + v + (0.5 - beta) * a;
-        let a1 = -((1.0 + alpha) * omega2 * up - alpha * omega2 * u)
-            / (1.0 + (1.0 + alpha) * omega2 * beta);
-        [up + beta * a1, v + (1.0 - gamma) * a + gamma * a1, a1]
-    };
-    let cols = [
-        step([1.0, 0.0, 0.0]),
-        step([0.0, 1.0, 0.0]),
-        step([0.0, 0.0, 1.0]),
-    ];
-    let m = |i: usize, j: usize| cols[j][i];
-    // λ³ − c2 λ² + c1 λ − c0.
-    let c2 = m(0, 0) + m(1, 1) + m(2, 2);
-    let c1 = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) + m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0)
-        + m(1, 1) * m(2, 2)
-        - m(1, 2) * m(2, 1);
-    let c0 = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
-        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
-        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
-    type C = (f64, f64);
-    let mul = |a: C, b: C| (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
-    let sub = |a: C, b: C| (a.0 - b.0, a.1 - b.1);
-    let div = |a: C, b: C| {
-        let d = b.0 * b.0 + b.1 * b.1;
-        ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
-    };
-    let p = |x: C| {
-        let x2 = mul(x, x);
-        let x3 = mul(x2, x);
-        (
-            x3.0 - c2 * x2.0 + c1 * x.0 - c0,
-            x3.1 - c2 * x2.1 + c1 * x.1,
-        )
-    };
-    let mut r: [C; 3] = [(0.4, 0.9), (-0.65, 0.72), (0.1, -0.8)];
-    for _ in 0..500 {
-        for i in 0..3 {
-            let mut den = (1.0, 0.0);
-            for j in 0..3 {
-                if i != j {
-                    den = mul(den, sub(r[i], r[j]));
-                }
-            }
-            r[i] = sub(r[i], div(p(r[i]), den));
-        }
-    }
-    r.iter()
+    common::one_step_eigenvalues(scheme, omega2)
+        .iter()
         .map(|z| (z.0 * z.0 + z.1 * z.1).sqrt())
         .fold(0.0, f64::max)
 }

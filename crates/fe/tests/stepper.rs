@@ -7,6 +7,8 @@
 //! spring `k = EA/L0` (the corotational chord stays vertical, so no moment or transverse force
 //! arises and the element is linear in the axial displacement).
 
+mod common;
+
 use catena_fe::analytical::tensioned_beam_frequency;
 use catena_fe::beam::Section;
 use catena_fe::dynamics::{
@@ -116,63 +118,6 @@ fn bar_history(
     (t, x)
 }
 
-/// The one-step map of HHT-α (Hilber, Hughes & Taylor 1977) for `ü + ω²u = 0`, acting on
-/// `(u, Δt·v, Δt²·a)` with `Ω = ωΔt`: from the scheme's three equations
-/// `a₁ + Ω²[(1+α)u₁ − αu₀] = 0`, `u₁ = u₀ + v₀ + (½−β)a₀ + βa₁`, `v₁ = v₀ + (1−γ)a₀ + γa₁`.
-/// Returns its three eigenvalues (complex), found as the roots of the characteristic cubic.
-fn hht_eigenvalues(alpha: f64, omega_dt: f64) -> [(f64, f64); 3] {
-    let (beta, gamma) = ((1.0 - alpha).powi(2) / 4.0, 0.5 - alpha);
-    let o2 = omega_dt * omega_dt;
-    let step = |x: [f64; 3]| {
-        let (u, v, a) = (x[0], x[1], x[2]);
-        let up = u + v + (0.5 - beta) * a;
-        let a1 = -((1.0 + alpha) * o2 * up - alpha * o2 * u) / (1.0 + (1.0 + alpha) * o2 * beta);
-        [up + beta * a1, v + (1.0 - gamma) * a + gamma * a1, a1]
-    };
-    let cols = [
-        step([1.0, 0.0, 0.0]),
-        step([0.0, 1.0, 0.0]),
-        step([0.0, 0.0, 1.0]),
-    ];
-    let m = |i: usize, j: usize| cols[j][i];
-    let c2 = m(0, 0) + m(1, 1) + m(2, 2);
-    let c1 = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) + m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0)
-        + m(1, 1) * m(2, 2)
-        - m(1, 2) * m(2, 1);
-    let c0 = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
-        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
-        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
-    type C = (f64, f64);
-    let mul = |a: C, b: C| (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
-    let sub = |a: C, b: C| (a.0 - b.0, a.1 - b.1);
-    let div = |a: C, b: C| {
-        let d = b.0 * b.0 + b.1 * b.1;
-        ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
-    };
-    let p = |x: C| {
-        let x2 = mul(x, x);
-        let x3 = mul(x2, x);
-        (
-            x3.0 - c2 * x2.0 + c1 * x.0 - c0,
-            x3.1 - c2 * x2.1 + c1 * x.1,
-        )
-    };
-    // Durand–Kerner.
-    let mut r: [C; 3] = [(0.4, 0.9), (-0.65, 0.72), (0.1, -0.8)];
-    for _ in 0..1000 {
-        for i in 0..3 {
-            let mut den = (1.0, 0.0);
-            for j in 0..3 {
-                if i != j {
-                    den = mul(den, sub(r[i], r[j]));
-                }
-            }
-            r[i] = sub(r[i], div(p(r[i]), den));
-        }
-    }
-    r
-}
-
 /// Peaks (local maxima, parabolic refinement) of a sampled signal: `(time, value)`.
 fn peaks(t: &[f64], x: &[f64]) -> Vec<(f64, f64)> {
     let mut out = Vec::new();
@@ -214,7 +159,7 @@ fn hht_alpha_decay_and_period_elongation_through_advance() {
     let dt = omega_dt / omega;
     let seg = segment(l, 1, ea, 1.0, mu, 0.0, 0.1);
     for alpha in [0.0, -0.1, -0.3] {
-        let lam = hht_eigenvalues(alpha, omega_dt);
+        let lam = common::one_step_eigenvalues(Scheme::Hht { alpha }, omega_dt * omega_dt);
         // The principal root: the complex pair with the largest modulus.
         let pr = lam
             .iter()
