@@ -245,3 +245,124 @@ fn wall_tension_of_a_hanging_column() {
     );
     assert!(end < 0.0);
 }
+
+/// The spectral anchors (derived for catena's specification): a JONSWAP-shaped stress PSD (Hs 1,
+/// Tp 10 s, γ 3.3) scaled to σ = 10 MPa and cut at 1 Hz has m0 = 100, m1 = 11.976, m2 = 1.6384,
+/// m4 = 0.072674 (Hz units); over 3 hours on a single slope m = 3, log ā = 11.610, the narrow-band
+/// damage is 1.0207e-4 and Dirlik's 9.812e-5. catena's moments and closed forms match the published
+/// digits (to half a unit of the last one); Γ(4) = 6 and Γ(2.5) = 1.329340388 to 1e-12.
+#[test]
+fn narrow_band_and_dirlik_closed_forms() {
+    use catena::fatigue::spectral::{dirlik, gamma, moments, narrow_band};
+    assert!((gamma(4.0) - 6.0).abs() < 1e-12);
+    assert!((gamma(2.5) - 1.329_340_388_179_137).abs() < 1e-12);
+    let tau = std::f64::consts::TAU;
+    let n = 200_001;
+    let f: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+    let raw: Vec<f64> = f
+        .iter()
+        .map(|x| tau * catena_fe::waves::jonswap(tau * x, 1.0, 10.0, 3.3))
+        .collect();
+    let m0_raw = moments(&f, &raw)[0];
+    let g: Vec<f64> = raw.iter().map(|v| v * 100.0 / m0_raw).collect();
+    let mo = moments(&f, &g);
+    println!("moments {mo:?}");
+    for (got, want, digits) in [
+        (mo[0], 100.0, 1e-9),
+        (mo[1], 11.976, 5e-4),
+        (mo[2], 1.6384, 5e-5),
+        (mo[3], 0.072674, 5e-7),
+    ] {
+        assert!((got - want).abs() <= digits, "{got} vs {want}");
+    }
+    let t = 3.0 * 3600.0;
+    let nb = narrow_band(mo, t, 3.0, 11.610);
+    let dk = dirlik(mo, t, 3.0, 11.610);
+    println!("narrow band {nb:.5e} (1.0207e-4), Dirlik {dk:.4e} (9.812e-5)");
+    assert!((nb - 1.0207e-4).abs() <= 0.5e-8, "{nb}");
+    assert!((dk - 9.812e-5).abs() <= 0.5e-8, "{dk}");
+}
+
+/// A synthetic Gaussian stress series of known PSD against Dirlik: the JONSWAP-shaped PSD above
+/// (σ = 10 MPa), band-limited to 0.02–0.5 Hz, synthesised as 600 jittered components (random
+/// phases, deterministic amplitudes) and sampled every 0.1 s for 3 hours, eight times with different
+/// seeds. The mean ASTM-rainflow damage (m = 3, log ā = 11.610) agrees with Dirlik's formula for the
+/// band-limited moments within 5 % (the specification's reference run of the same kind gave
+/// 9.674e-5 ± 2.7 %, against Dirlik's 9.812e-5 for the full band).
+#[test]
+fn gaussian_series_against_dirlik() {
+    use catena::fatigue::rainflow::Rainflow;
+    use catena::fatigue::spectral::{dirlik, moments};
+    let tau = std::f64::consts::TAU;
+    let psd = |f: f64| tau * catena_fe::waves::jonswap(tau * f, 1.0, 10.0, 3.3);
+    // Scale to m0 = 100 over (0, 1] Hz.
+    let n = 100_001;
+    let fs: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+    let raw: Vec<f64> = fs.iter().map(|f| psd(*f)).collect();
+    let scale = 100.0 / moments(&fs, &raw)[0];
+    let (lo, hi) = (0.02, 0.5);
+    let band: Vec<f64> = fs
+        .iter()
+        .zip(&raw)
+        .map(|(f, g)| {
+            if (lo..=hi).contains(f) {
+                g * scale
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mo = moments(&fs, &band);
+    let t = 3.0 * 3600.0;
+    let want = dirlik(mo, t, 3.0, 11.610);
+    let nc = 600;
+    let df = (hi - lo) / nc as f64;
+    let dt = 0.1;
+    let steps = (t / dt) as usize;
+    let mut seed: u64 = 12345;
+    let mut unit = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut total = 0.0;
+    let runs = 8;
+    for _ in 0..runs {
+        // Per component: amplitude, and the phasor advanced by recurrence (renormalised every
+        // 1000 samples to keep it on the unit circle).
+        let mut comp: Vec<(f64, (f64, f64), (f64, f64))> = (0..nc)
+            .map(|i| {
+                let f = lo + df * (i as f64 + unit());
+                let a = (2.0 * psd(f) * scale * df).sqrt();
+                let ph = tau * unit();
+                let rot = (tau * f * dt).sin_cos();
+                (a, (ph.cos(), ph.sin()), (rot.1, rot.0))
+            })
+            .collect();
+        let mut rf = Rainflow::new();
+        let mut d = 0.0;
+        let mut sink = |c: catena::fatigue::rainflow::Cycle| {
+            d += c.count * c.range.powi(3) / 10f64.powf(11.610);
+        };
+        for k in 0..steps {
+            let x: f64 = comp.iter().map(|(a, p, _)| a * p.0).sum();
+            rf.push(x, &mut sink);
+            for (_, p, r) in comp.iter_mut() {
+                *p = (p.0 * r.0 - p.1 * r.1, p.0 * r.1 + p.1 * r.0);
+                if k % 1000 == 999 {
+                    let norm = p.0.hypot(p.1);
+                    *p = (p.0 / norm, p.1 / norm);
+                }
+            }
+        }
+        rf.finish(&mut sink);
+        total += d;
+    }
+    let mean = total / runs as f64;
+    println!(
+        "time domain {mean:.4e} (mean of {runs} × 3 h), Dirlik {want:.4e} for the band-limited moments ({:+.2} %)",
+        100.0 * (mean / want - 1.0)
+    );
+    assert!((mean / want - 1.0).abs() < 0.05);
+}

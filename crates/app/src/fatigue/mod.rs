@@ -5,6 +5,7 @@
 
 pub mod rainflow;
 pub mod sn;
+pub mod spectral;
 pub mod stress;
 
 use sn::SnCurve;
