@@ -331,7 +331,8 @@ fn gaussian_series_against_dirlik() {
     for _ in 0..runs {
         // Per component: amplitude, and the phasor advanced by recurrence (renormalised every
         // 1000 samples to keep it on the unit circle).
-        let mut comp: Vec<(f64, (f64, f64), (f64, f64))> = (0..nc)
+        type Phasor = (f64, f64);
+        let mut comp: Vec<(f64, Phasor, Phasor)> = (0..nc)
             .map(|i| {
                 let f = lo + df * (i as f64 + unit());
                 let a = (2.0 * psd(f) * scale * df).sqrt();
