@@ -16,9 +16,8 @@
 //!   bend, whose larger range then sets the value at the margin's edge.)
 //! - the top-tension range and the top-tension maximum;
 //! - with a seabed, the largest penetration;
-//! - for each gauge, its least and greatest bending moment (the whole run).
-//!
-//! Fatigue damage joins these outputs when catena computes it.
+//! - for each gauge, its least and greatest bending moment (the whole run);
+//! - with a `[fatigue]` table, the largest damage along the line for each fibre.
 //!
 //! **Errors.** In each series (mesh, Δt) with the three finest levels h₁ < h₂ < h₃ in a constant
 //! ratio r = h₂/h₁ = h₃/h₂ and outputs f₁, f₂, f₃, the observed order and Richardson's estimate of
@@ -240,6 +239,15 @@ pub fn output_defs(scene: &RiserScene) -> Vec<OutputDef> {
                 "kN·m",
             ));
         }
+        if let Some(f) = &d.fatigue {
+            for fib in &f.fibres {
+                v.push(def(
+                    &format!("fatigue_damage_{}", fib.name()),
+                    &format!("largest fatigue damage ({} fibre)", fib.name()),
+                    "1",
+                ));
+            }
+        }
     }
     v
 }
@@ -298,6 +306,12 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
         let (lo, hi) = tr.moment_extremes;
         v.push(lo.unwrap_or(f64::NAN) * 1e-3);
         v.push(hi.unwrap_or(f64::NAN) * 1e-3);
+    }
+    if let Some(f) = &r.fatigue {
+        for fib in &f.spec.fibres {
+            let d = f.damage_of(*fib).unwrap_or_default();
+            v.push(d.iter().copied().fold(f64::NAN, f64::max));
+        }
     }
     v
 }
