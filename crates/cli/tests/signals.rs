@@ -31,6 +31,15 @@ fn summary(dir: &Path) -> serde_json::Value {
         .expect("json")
 }
 
+/// Waits (up to 60 s) until the run has written records to `h5` (the file passes 2 MB).
+fn wait_for_records(h5: &Path) {
+    let t0 = std::time::Instant::now();
+    while !(h5.exists() && std::fs::metadata(h5).map(|m| m.len()).unwrap_or(0) > 2_000_000) {
+        assert!(t0.elapsed().as_secs() < 60, "no records after 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
 /// The two cases run one after the other (one test), so that neither child inherits the other's
 /// open files.
 #[test]
@@ -63,11 +72,7 @@ fn sigterm_stops_at_the_next_step_and_keeps_everything() {
         .expect("spawn");
     // Wait until the dynamics have written records, then send SIGTERM.
     let h5 = out.join("results.h5");
-    let t0 = std::time::Instant::now();
-    while !(h5.exists() && std::fs::metadata(&h5).map(|m| m.len()).unwrap_or(0) > 2_000_000) {
-        assert!(t0.elapsed().as_secs() < 60, "no records after 60 s");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_for_records(&h5);
     let status = std::process::Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()
@@ -122,11 +127,7 @@ fn sigkill_leaves_a_readable_results_file() {
         .spawn()
         .expect("spawn");
     let h5 = out.join("results.h5");
-    let t0 = std::time::Instant::now();
-    while !(h5.exists() && std::fs::metadata(&h5).map(|m| m.len()).unwrap_or(0) > 2_000_000) {
-        assert!(t0.elapsed().as_secs() < 60, "no records after 60 s");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_for_records(&h5);
     std::thread::sleep(std::time::Duration::from_millis(300));
     child.kill().expect("SIGKILL");
     let _ = child.wait();

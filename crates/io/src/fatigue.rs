@@ -158,10 +158,7 @@ pub fn life_png(
 ) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
-    let perr = |e: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message: e,
-    };
+    let perr = plot_err::<String>(path);
     let root = BitMapBackend::new(path, (1600, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
@@ -251,10 +248,7 @@ pub fn life_png(
 pub fn storms_png(path: &Path, shares: &[(i64, f64)], title: &str) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
-    let perr = |e: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message: e,
-    };
+    let perr = plot_err::<String>(path);
     let root = BitMapBackend::new(path, (1400, 700)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let n = shares.len().max(1) as i64;

@@ -297,10 +297,7 @@ pub fn static_line(
 ) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
-    let perr = |message: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    };
+    let perr = plot_err::<String>(path);
     let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
@@ -322,7 +319,7 @@ pub fn static_line(
         "z above the mudline (m)",
         &[(mudline, RGBColor(140, 100, 40)), (shape, blue)],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     panel(
         &areas[1],
         "bending moment (negative = sag)",
@@ -330,7 +327,7 @@ pub fn static_line(
         "M (kN·m)",
         &[(by_arc(&r.moment, 1e-3), RGBColor(180, 30, 30))],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     panel(
         &areas[2],
         "effective tension",
@@ -338,7 +335,7 @@ pub fn static_line(
         "T (kN)",
         &[(by_arc(&r.tension, 1e-3), blue)],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     panel(
         &areas[3],
         "invert penetration (positive down)",
@@ -352,7 +349,7 @@ pub fn static_line(
             RGBColor(20, 150, 40),
         )],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     root.present().map_err(&err)?;
     Ok(())
 }
@@ -361,10 +358,7 @@ pub fn static_line(
 pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
-    let perr = |message: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    };
+    let perr = plot_err::<String>(path);
     let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let title = format!(
@@ -396,7 +390,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             (line(&r.statics.results.moment, 1e-3), grey),
         ],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     panel(
         &areas[1],
         "bending moment range",
@@ -404,7 +398,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "ΔM (kN·m)",
         &[(line(&e.moment_range(), 1e-3), red)],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     panel(
         &areas[2],
         "effective tension envelope (min, max)",
@@ -415,7 +409,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             (line(&e.tension_max, 1e-3), blue),
         ],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     let th: Vec<(f64, f64)> = r
         .top
         .t
@@ -430,7 +424,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "T_top (kN)",
         &[(th, blue)],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     root.present().map_err(&err)?;
     Ok(())
 }
@@ -441,10 +435,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
 pub fn gauges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
-    let perr = |message: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    };
+    let perr = plot_err::<String>(path);
     let ng = r.spec.gauges.len();
     let root = BitMapBackend::new(path, (900 * ng.min(3) as u32, 750)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
@@ -482,7 +473,7 @@ pub fn gauges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             &series,
             Marks::Points,
         )
-        .map_err(perr)?;
+        .map_err(&perr)?;
     }
     root.present().map_err(&err)?;
     Ok(())
@@ -498,10 +489,7 @@ pub fn sea(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     };
     init_fonts();
     let err = plot_err(path);
-    let perr = |message: String| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    };
+    let perr = plot_err::<String>(path);
     let root = BitMapBackend::new(path, (1600, 1000)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let title = format!("{} — sea and hang-off motion", r.statics.scene.title);
@@ -535,7 +523,7 @@ pub fn sea(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "η (m), pitch (deg)",
         &series,
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     let (x0, z0) = (r.statics.results.x[0], r.statics.results.z[0]);
     let th = r.statics.summary.top_angle_from_vertical;
     let dx: Vec<(f64, f64)> =
@@ -560,7 +548,7 @@ pub fn sea(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "displacement (m)",
         &[(dx, blue), (dz, red), (ax, black)],
     )
-    .map_err(perr)?;
+    .map_err(&perr)?;
     root.present().map_err(&err)?;
     Ok(())
 }
