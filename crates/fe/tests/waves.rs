@@ -392,3 +392,40 @@ fn pure_pitch_transfer_and_exact_derivatives() {
 fn semi_pitch(text: &str) -> RaoTable {
     RaoTable::parse_csv(text).expect("parses")
 }
+
+/// Wave inertia on a node: `ρA(1 + Ca)` times the normal part of the water's acceleration plus
+/// the Froude–Krylov force `ρA` times its axial part (hand-computed: D 0.2 m, L 3 m, Ca 1,
+/// tangent at 30° to x, acceleration (0.4, −0.7) m/s²).
+#[test]
+fn wave_inertia_is_froude_krylov_plus_normal_added_mass() {
+    use catena_fe::environment::Hydro;
+    let h = Hydro {
+        water_density: 1025.0,
+        cd_normal: 1.0,
+        cd_axial: 0.0,
+        ca_normal: 1.0,
+        current: vec![],
+    };
+    let (d, l) = (0.2, 3.0);
+    let th = 30f64.to_radians();
+    let t = (th.cos(), th.sin());
+    let acc = [0.4, -0.7];
+    let rho_a_l = 1025.0 * std::f64::consts::PI * 0.01 * 3.0; // ρ πD²/4 L = 96.604 kg
+    let s = acc[0] * t.0 + acc[1] * t.1;
+    let normal = [acc[0] - s * t.0, acc[1] - s * t.1];
+    let f = h.wave_inertia(d, l, t, acc);
+    for k in 0..2 {
+        let tk = if k == 0 { t.0 } else { t.1 };
+        let want = rho_a_l * (2.0 * normal[k] + s * tk);
+        assert!(
+            (f[k] - want).abs() < 1e-10 * want.abs().max(1.0),
+            "{k}: {} vs {want}",
+            f[k]
+        );
+    }
+    // A purely axial acceleration meets the displaced mass alone, a purely normal one (1 + Ca) times it.
+    let along = h.wave_inertia(d, l, (1.0, 0.0), [1.0, 0.0]);
+    let across = h.wave_inertia(d, l, (1.0, 0.0), [0.0, 1.0]);
+    assert!((along[0] - rho_a_l).abs() < 1e-9 && along[1] == 0.0);
+    assert!((across[1] - 2.0 * rho_a_l).abs() < 1e-9 && across[0] == 0.0);
+}
