@@ -77,6 +77,38 @@ fn waves(c: &mut Criterion) {
                 dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step")
             })
         });
+        // The parts waves add to a step, alone: the kinematics at every node (once per attempt)
+        // and the vessel's motion (once per step).
+        if let Some(waves) = &dm.environment.waves {
+            let level = dm.environment.water_level;
+            let nodes: Vec<(f64, f64)> = st
+                .results
+                .x
+                .iter()
+                .zip(&st.results.z)
+                .map(|(x, z)| (*x, *z - level))
+                .collect();
+            let mut sc = waves.scratch();
+            let mut t = 20.0;
+            g.bench_function("kinematics_at_every_node", |b| {
+                b.iter(|| {
+                    t += spec.dt;
+                    let mut acc = 0.0;
+                    for &(x, z) in &nodes {
+                        if let Some(k) = waves.kinematics_with(x, z, t, &mut sc) {
+                            acc += k.velocity[0];
+                        }
+                    }
+                    acc
+                })
+            });
+            g.bench_function("vessel_motion", |b| {
+                b.iter(|| {
+                    t += spec.dt;
+                    dm.top_at(t)
+                })
+            });
+        }
     }
     g.finish();
 }

@@ -67,7 +67,7 @@ use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
-use crate::waves::Kinematics;
+use crate::waves::{Kinematics, WaveScratch};
 
 /// The time integration scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -325,6 +325,8 @@ pub struct DynWorkspace {
     /// Water kinematics at each node for the step under way (evaluated once per attempt at the
     /// predicted positions; `None` above the surface or without waves).
     wave_kin: Vec<Option<Kinematics>>,
+    /// The wave trains' per-time scratch (sized on first use).
+    wave_scratch: WaveScratch,
     /// The flexjoint's vessel-side rotation for the step under way, rad.
     fj_rotation: f64,
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
@@ -364,6 +366,7 @@ impl DynWorkspace {
             },
             factored_dt: None,
             wave_kin: vec![None; n],
+            wave_scratch: WaveScratch::default(),
             fj_rotation: 0.0,
         })
     }
@@ -564,7 +567,7 @@ fn wave_kinematics(dm: &DynamicModel, t: f64, ws: &mut DynWorkspace) {
     for (i, k) in ws.wave_kin.iter_mut().enumerate() {
         let x = pl.base[3 * i] + ws.u[3 * i];
         let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - env.water_level;
-        *k = waves.kinematics(x, z, t);
+        *k = waves.kinematics_with(x, z, t, &mut ws.wave_scratch);
     }
 }
 

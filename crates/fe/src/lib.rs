@@ -21,6 +21,7 @@ pub mod assembly;
 pub mod beam;
 pub mod dynamics;
 pub mod environment;
+mod fastmath;
 pub mod model;
 pub mod motion;
 pub mod sparse;

@@ -212,7 +212,7 @@ impl Vessel {
             let s = waves.direction.sign();
             for (c, rao) in waves.components.iter().zip(&self.rao) {
                 let psi = c.omega * t - s * c.k * self.origin_x + c.phase;
-                let (sp, cp) = psi.sin_cos();
+                let (sp, cp) = crate::fastmath::sin_cos(psi);
                 for j in 0..3 {
                     let (re, im) = rao[j];
                     // Re(a R e^{iψ}) and its time derivatives.
