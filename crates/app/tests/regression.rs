@@ -31,7 +31,7 @@ fn pin(what: &str, got: f64, pinned: f64) {
     let rel = (got / pinned - 1.0).abs();
     println!("{what}: {got:.10e} (pinned {pinned:.10e}, rel. diff {rel:.2e})");
     assert!(
-        rel <= 1e-6,
+        rel <= 1e-9,
         "{what}: {got} moved from the pinned {pinned} (rel. {rel:.3e})"
     );
 }

@@ -20,7 +20,7 @@
 
 use crate::beam::corotational_beam_chord;
 use crate::model::LineModel;
-use crate::sparse::{LdltSolver, SolveError, SparseSym};
+use crate::sparse::{LinearSolver, SolveError, SparseSym};
 
 const NONE: usize = usize::MAX;
 
@@ -55,15 +55,19 @@ impl Placement {
     }
 }
 
+/// An element's stored tangent entries: `(local row, local column, value slot)` for its pairs
+/// `(i ≤ j)` of free equations (at most 21), and how many there are.
+type ElemPairs = ([(u8, u8, usize); 21], u8);
+
 /// The structural assembly of one line: pattern, slots, factorisation and element results. Part of
 /// a Workspace: never saved, rebuilt from the Model.
 #[derive(Debug)]
 pub struct Assembler {
     /// The tangent (free equations), upper triangle.
     pub k: SparseSym,
-    solver: LdltSolver,
+    solver: LinearSolver,
     /// For element `e`, the value slot of local pair `(a, b)` (`usize::MAX` if not stored).
-    elem_slots: Vec<[usize; 36]>,
+    elem_pairs: Vec<ElemPairs>,
     /// The diagonal slot of each equation.
     diag_slots: Vec<usize>,
     /// The off-diagonal (x, z) slot of each node, if both are free.
@@ -95,13 +99,16 @@ impl Assembler {
             }
         }
         let k = SparseSym::from_couplings(model.n_eq, pairs);
-        let mut elem_slots = vec![[NONE; 36]; ne];
-        for (e, slots) in elem_slots.iter_mut().enumerate() {
+        let mut elem_pairs = vec![([(0u8, 0u8, 0usize); 21], 0u8); ne];
+        for (e, (pairs, len)) in elem_pairs.iter_mut().enumerate() {
             for a in 0..6 {
                 for b in 0..6 {
                     if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
                         if i <= j {
-                            slots[a * 6 + b] = k.slot(i, j).unwrap_or(NONE);
+                            if let Some(s) = k.slot(i, j) {
+                                pairs[*len as usize] = (a as u8, b as u8, s);
+                                *len += 1;
+                            }
                         }
                     }
                 }
@@ -116,13 +123,13 @@ impl Assembler {
                 _ => NONE,
             })
             .collect();
-        let solver = LdltSolver::with_ordering(&k, true)?;
+        let solver = LinearSolver::new(&k)?;
         let n3 = 3 * model.nodes();
         let nnz = k.values.len();
         Ok(Self {
             k,
             solver,
-            elem_slots,
+            elem_pairs,
             diag_slots,
             xz_slots,
             residual: vec![0.0; n3],
@@ -168,14 +175,10 @@ impl Assembler {
             self.axial[e] = r.axial;
             self.moments[e] = (r.moment1, r.moment2);
             if with_k {
-                let slots = &self.elem_slots[e];
-                for a in 0..6 {
-                    for c in 0..6 {
-                        let s = slots[a * 6 + c];
-                        if s != NONE {
-                            self.k.values[s] += r.stiffness[a][c];
-                        }
-                    }
+                // The stored (upper-triangle) entries only, from the precomputed list.
+                let (pairs, len) = &self.elem_pairs[e];
+                for &(a, c, s) in &pairs[..*len as usize] {
+                    self.k.values[s] += r.stiffness[a as usize][c as usize];
                 }
             }
         }
@@ -225,14 +228,9 @@ impl Assembler {
                 self.residual[b + a] += d.force[a];
             }
             if with_c {
-                let slots = &self.elem_slots[e];
-                for a in 0..6 {
-                    for c in 0..6 {
-                        let s = slots[a * 6 + c];
-                        if s != NONE {
-                            self.k.values[s] += c_scale * d.damping[a][c];
-                        }
-                    }
+                let (pairs, len) = &self.elem_pairs[e];
+                for &(a, c, s) in &pairs[..*len as usize] {
+                    self.k.values[s] += c_scale * d.damping[a as usize][c as usize];
                 }
             }
         }

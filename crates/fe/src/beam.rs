@@ -147,6 +147,9 @@ pub fn structural_damping(
 /// Wraps an angle to (−π, π].
 #[inline]
 pub fn wrap(a: f64) -> f64 {
+    if a > -std::f64::consts::PI && a <= std::f64::consts::PI {
+        return a; // the usual case, without the remainder (identical result)
+    }
     let two_pi = std::f64::consts::TAU;
     let mut w = a % two_pi;
     if w > std::f64::consts::PI {
@@ -213,12 +216,15 @@ pub fn corotational_beam_chord(
             // (K_l B) columns for row i of Bᵀ: Bᵀ K_l B = ka r rᵀ + [b1 b2] Kb [b1 b2]ᵀ
             let a1 = k11 * b1[i] + k12 * b2[i];
             let a2 = k12 * b1[i] + k22 * b2[i];
-            for j in 0..6 {
-                k[i][j] = ka * r[i] * r[j]
+            // Symmetric: the upper triangle, mirrored.
+            for j in i..6 {
+                let v = ka * r[i] * r[j]
                     + a1 * b1[j]
                     + a2 * b2[j]
                     + gq * q[i] * q[j]
                     + gm * (r[i] * q[j] + q[i] * r[j]);
+                k[i][j] = v;
+                k[j][i] = v;
             }
         }
     }

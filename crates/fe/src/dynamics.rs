@@ -521,7 +521,7 @@ fn forces_at_iterate(
     if let Some(h) = &dm.environment.hydro {
         for i in 0..n {
             let th = pl.base[3 * i + 2] + u[3 * i + 2];
-            let (ty, tx) = th.sin_cos();
+            let (ty, tx) = crate::fastmath::sin_cos(th);
             let z = pl.base[3 * i + 1] + u[3 * i + 1];
             let kin = ws.wave_kin[i];
             let d = h.drag(
@@ -589,16 +589,12 @@ fn lump_mass(dm: &DynamicModel, u: &[f64], mass: &mut [[f64; 4]]) {
         for (i, m) in mass.iter_mut().enumerate() {
             let ma = h.added_mass(model.node_od[i], model.tributary[i]);
             let th = pl.base[3 * i + 2] + u[3 * i + 2];
-            let (ty, tx) = th.sin_cos();
+            let (ty, tx) = crate::fastmath::sin_cos(th);
             m[0] += ma * (1.0 - tx * tx);
             m[1] += -ma * tx * ty;
             m[2] += ma * (1.0 - ty * ty);
         }
     }
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// One attempt at a step of `dt` from `state`. On success the State is advanced (histories
@@ -632,6 +628,11 @@ fn attempt(
     let c_v = gamma / (beta * dt);
     let mut last = (0, f64::INFINITY, 0);
     let mut first = f64::INFINITY;
+    // After a correction with a fresh factorisation Newton is quadratic and the next residual
+    // nearly always converges: evaluate it without the tangent, and assemble the tangent at that
+    // iterate only if it does not (half of all tangent assemblies were thrown away before; the
+    // answer is the same to the bit: the residual and the tangent do not depend on each other).
+    let mut after_fresh = false;
     for it in 0..set.max_iter {
         // Kinematics from the Newmark relations; prescribed dofs from the motion.
         newmark_kinematics(model, state, ws, dt, beta, gamma);
@@ -656,7 +657,8 @@ fn attempt(
         // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
         // step instead of two; later iterations are full Newton.
         let reuse = it == 0 && ws.factored_dt == Some(dt);
-        forces_at_iterate(dm, &state.history, ws, !reuse, 1.0 + alpha, c_v, dt);
+        let lazy = reuse || after_fresh;
+        forces_at_iterate(dm, &state.history, ws, !lazy, 1.0 + alpha, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n on the free equations.
         for i in 0..n {
             let m = ws.mass[i];
@@ -668,34 +670,27 @@ fn attempt(
                     ws.g[e] = inertia[k] + (1.0 + alpha) * ws.f[g] - alpha * state.f_prev[g];
                 }
             }
-            if !reuse {
-                ws.asm
-                    .add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
-                ws.asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+            if !lazy {
+                add_mass_tangent(&mut ws.asm, model, i, c_m, m);
             }
         }
-        let r = norm(&ws.g) / refn;
-        let worst =
-            ws.g.iter()
-                .enumerate()
-                .fold(
-                    (0.0, 0),
-                    |b, (e, x)| if x.abs() > b.0 { (x.abs(), e) } else { b },
-                )
-                .1;
-        let node = model
-            .equation
-            .iter()
-            .position(|e| *e == Some(worst))
-            .map_or(0, |g| g / 3);
-        last = (it, r, node);
+        // The norm and the worst equation in one pass (its node is looked up only on failure).
+        let (mut sq, mut big, mut worst) = (0.0, 0.0, 0);
+        for (e, x) in ws.g.iter().enumerate() {
+            sq += x * x;
+            if x.abs() > big {
+                (big, worst) = (x.abs(), e);
+            }
+        }
+        let r = sq.sqrt() / refn;
+        last = (it, r, worst);
         if it == 0 {
             first = r;
         }
         // Diverging (the residual 10⁴ times its start): give up at once, retry or cut.
         if !r.is_finite() || (it >= 2 && r > 1e4 * first) {
             return Err(Failed {
-                last,
+                last: worst_node(model, last),
                 diverged: true,
             });
         }
@@ -704,6 +699,15 @@ fn attempt(
             return Ok(());
         }
         *iterations += 1;
+        if after_fresh && !reuse {
+            // Not converged after all: the tangent at this iterate (the residual is recomputed
+            // with it, to the same values).
+            forces_at_iterate(dm, &state.history, ws, true, 1.0 + alpha, c_v, dt);
+            for i in 0..n {
+                add_mass_tangent(&mut ws.asm, model, i, c_m, ws.mass[i]);
+            }
+        }
+        after_fresh = !reuse;
         if !reuse {
             if ws.asm.factor_tangent().is_err() {
                 // `advance` drops the factorisation of every failed attempt.
@@ -728,9 +732,25 @@ fn attempt(
         }
     }
     Err(Failed {
-        last,
+        last: worst_node(model, last),
         diverged: false,
     })
+}
+
+/// `(iteration, residual, worst equation)` with the equation replaced by its node.
+fn worst_node(model: &LineModel, (it, r, eq): (usize, f64, usize)) -> (usize, f64, usize) {
+    let node = model
+        .equation
+        .iter()
+        .position(|e| *e == Some(eq))
+        .map_or(0, |g| g / 3);
+    (it, r, node)
+}
+
+/// The lumped mass's part of the tangent at node `i`, `c_m·M_i`.
+fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, i: usize, c_m: f64, m: [f64; 4]) {
+    asm.add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
+    asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
 }
 
 /// A failed attempt: the last iterate's (iteration, relative residual, worst node), and whether
