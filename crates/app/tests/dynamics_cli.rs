@@ -597,3 +597,31 @@ fn malformed_checkpoints_are_refused_with_the_reason() {
         );
     }
 }
+
+/// Without `output_interval` a run records every step up to 10 000 steps, and beyond that the
+/// smallest multiple of the time step that keeps it within 10 000 records: the heave benchmark
+/// stretched to a 3-hour storm's 216 000 steps records every 22nd step (1.1 s); an explicit
+/// interval is kept as given.
+#[test]
+fn long_runs_record_at_a_bounded_default_interval() {
+    let parse = |text: &str| {
+        RiserScene::parse(
+            "heave.toml",
+            text,
+            &DirResolver::beside(&root().join("cases/benchmarks/scr-heave.toml")),
+        )
+        .expect("scene")
+        .dynamic
+        .expect("dynamic")
+    };
+    assert_eq!(parse(&heave_text()).output_every, 1);
+    let long = heave_text().replace("duration = 100.0", "duration = 10800.0");
+    assert_ne!(long, heave_text());
+    assert_eq!(parse(&long).output_every, 22);
+    let explicit = long.replace(
+        "time_step = 0.05              # s (2000 steps)",
+        "time_step = 0.05\noutput_interval = 0.05",
+    );
+    assert_ne!(explicit, long);
+    assert_eq!(parse(&explicit).output_every, 1);
+}

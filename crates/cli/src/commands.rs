@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
+use std::time::Instant;
 
 use catena::checkpoint::Checkpoint;
 use catena::convergence::ConvergenceOptions;
@@ -82,7 +83,9 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
         });
     }
+    let t_statics = Instant::now();
     let st = statics::solve(scene)?;
+    let statics_seconds = t_statics.elapsed().as_secs_f64();
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
     let h5p = out.join("results.h5");
     let gauge_names: Vec<String> = st.scene.dynamic.as_ref().map_or_else(Vec::new, |d| {
@@ -129,7 +132,9 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     )?;
     drop(extra);
     let records = rec.records();
+    let recording_seconds = rec.busy_seconds();
     drop(rec);
+    let t_outputs = Instant::now();
     h5::write_fatigue(&h5p, &r)?;
     let js = out.join("summary.json");
     write_json(&js, &report::dynamic_json(&r))?;
@@ -140,7 +145,17 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     if r.model.environment.waves.is_some() {
         plot::sea(&out.join("sea.png"), &r)?;
     }
+    let outputs_seconds = t_outputs.elapsed().as_secs_f64();
     let mut t = report::dynamic_text(&r);
+    let _ = writeln!(
+        t,
+        "  time: statics {:.3} s; dynamics {:.2} s ({:.0} steps/s), of which recording {:.2} s; plots and summary {:.2} s",
+        statics_seconds,
+        r.wall_seconds,
+        r.steps as f64 / r.wall_seconds.max(1e-9),
+        recording_seconds,
+        outputs_seconds
+    );
     let _ = writeln!(
         t,
         "  wrote {} ({} records), {}, plots in {}",

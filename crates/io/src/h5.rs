@@ -107,6 +107,8 @@ pub struct Recorder {
     sea: Option<(f64, [f64; 2], [f64; 2])>,
     has_sea: bool,
     last_flush: Instant,
+    /// Time spent recording (buffering and writing), s.
+    busy: f64,
 }
 
 const SEA: [(&str, &str); 3] = [
@@ -277,6 +279,7 @@ impl Recorder {
             sea: None,
             has_sea,
             last_flush: Instant::now(),
+            busy: 0.0,
         })
     }
 
@@ -368,6 +371,11 @@ impl Recorder {
         ])
     }
 
+    /// Seconds spent recording so far (buffering, writing, flushing).
+    pub fn busy_seconds(&self) -> f64 {
+        self.busy
+    }
+
     /// Records written so far (flushed or not).
     pub fn records(&self) -> usize {
         self.written + self.rows
@@ -434,8 +442,10 @@ impl Observer for Recorder {
 
     fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         if s.record {
+            let t0 = Instant::now();
             let sea = self.sea_values(ctx, s);
             self.push(s.t, s.results, &ctx.model.line.arc, sea)?;
+            self.busy += t0.elapsed().as_secs_f64();
         }
         Ok(Control::Continue)
     }
@@ -445,7 +455,10 @@ impl Observer for Recorder {
         _: &RunContext<'_>,
         _: Option<&catena::observe::Stop>,
     ) -> Result<(), AppError> {
-        self.flush()
+        let t0 = Instant::now();
+        let r = self.flush();
+        self.busy += t0.elapsed().as_secs_f64();
+        r
     }
 
     fn save(&mut self) -> Result<serde_json::Value, AppError> {

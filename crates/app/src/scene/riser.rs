@@ -361,6 +361,9 @@ pub struct Gauge {
     pub midway_touchdown_lift: Option<f64>,
 }
 
+/// Records a run keeps at most when its scene gives no `dynamic.output_interval`.
+pub const DEFAULT_MAX_RECORDS: f64 = 10_000.0;
+
 /// The dynamic part of a scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynamicSpec {
@@ -858,7 +861,13 @@ fn dynamic_spec(
             "a time step no longer than the duration",
         ));
     }
-    let out = d.output_interval.unwrap_or(d.time_step);
+    // Default: every step, up to DEFAULT_MAX_RECORDS records; beyond that the smallest whole
+    // multiple of the time step that keeps the run within it (a 3-hour storm at 0.05 s would
+    // otherwise write every one of its 216 000 steps: gigabytes).
+    let out = d.output_interval.unwrap_or_else(|| {
+        let steps = (d.duration / d.time_step).ceil();
+        d.time_step * (steps / DEFAULT_MAX_RECORDS).ceil().max(1.0)
+    });
     positive(file, "dynamic.output_interval", out, "an interval in s")?;
     let every = (out / d.time_step).round();
     if every < 1.0 || ((every * d.time_step) - out).abs() > 1e-9 * out {
