@@ -210,67 +210,94 @@ impl BandLdlt {
         for (v, &m) in a.values.iter().zip(&self.map) {
             self.band[m] = *v;
         }
-        let (n, w) = (self.n, self.w);
-        let band = &mut self.band[..];
-        for j in 0..n {
-            let lo = j.saturating_sub(w);
-            // Column j holds rows lo..=j at band[cj + (lo + w − j) ..= cj + w].
-            let cj = j * (w + 1);
-            let (before, col_j) = band.split_at_mut(cj);
-            let col_j = &mut col_j[..w + 1];
-            let off_j = w - j; // row r of column j is col_j[r + off_j] (r ≥ lo)
-                               // t_i = A_ij − Σ_{k = max(lo, i−w)}^{i−1} L_ik t_k, in place of A_ij.
-            for i in lo..j {
-                let klo = lo.max(i.saturating_sub(w));
-                let ci = i * (w + 1);
-                let off_i = ci + w - i; // row r of column i is before[r + off_i]
-                let l_i = &before[klo + off_i..i + off_i];
-                let t_k = &col_j[klo + off_j..i + off_j];
-                let mut t = col_j[i + off_j];
-                for (l, tk) in l_i.iter().zip(t_k) {
-                    t -= l * tk;
-                }
-                col_j[i + off_j] = t;
-            }
-            let mut d = col_j[w];
-            for i in lo..j {
-                let t = col_j[i + off_j];
-                let l = t / before[i * (w + 1) + w];
-                d -= l * t;
-                col_j[i + off_j] = l;
-            }
-            if d == 0.0 || !d.is_finite() {
-                return Err(SolveError::Singular { equation: j });
-            }
-            col_j[w] = d;
+        // A beam line's half-width (5) as a constant: the short inner loops unroll and stay in
+        // registers. The same arithmetic in the same order as the general path.
+        match self.w {
+            5 => factor_band::<5>(self.n, &mut self.band),
+            w => factor_band_dyn(self.n, w, &mut self.band),
         }
-        Ok(())
     }
 
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&self, x: &mut [f64]) {
-        let (n, w) = (self.n, self.w);
-        for j in 0..n {
-            let lo = j.saturating_sub(w);
-            let cj = j * (w + 1) + w - j;
-            let l = &self.band[lo + cj..j + cj];
-            let mut s = x[j];
-            for (li, xi) in l.iter().zip(&x[lo..j]) {
-                s -= li * xi;
-            }
-            x[j] = s;
+        match self.w {
+            5 => solve_band::<5>(self.n, &self.band, x),
+            w => solve_band_dyn(self.n, w, &self.band, x),
         }
-        for (j, xj) in x.iter_mut().enumerate().take(n) {
-            *xj /= self.band[j * (w + 1) + w];
-        }
-        for j in (0..n).rev() {
-            let lo = j.saturating_sub(w);
-            let cj = j * (w + 1) + w - j;
-            let l = &self.band[lo + cj..j + cj];
-            let xj = x[j];
-            for (xi, li) in x[lo..j].iter_mut().zip(l) {
-                *xi -= li * xj;
+    }
+}
+
+/// [`BandLdlt::factor`] for a half-width known at compile time.
+fn factor_band<const W: usize>(n: usize, band: &mut [f64]) -> Result<(), SolveError> {
+    factor_band_dyn(n, W, band)
+}
+
+/// [`BandLdlt::solve_in_place`] for a half-width known at compile time.
+fn solve_band<const W: usize>(n: usize, band: &[f64], x: &mut [f64]) {
+    solve_band_dyn(n, W, band, x)
+}
+
+/// The band factorisation (see the module docs); `#[inline(always)]` so that a constant `w`
+/// from [`factor_band`] specialises it.
+#[inline(always)]
+fn factor_band_dyn(n: usize, w: usize, band: &mut [f64]) -> Result<(), SolveError> {
+    for j in 0..n {
+        let lo = j.saturating_sub(w);
+        // Column j holds rows lo..=j at band[cj + (lo + w − j) ..= cj + w].
+        let cj = j * (w + 1);
+        let (before, col_j) = band.split_at_mut(cj);
+        let col_j = &mut col_j[..w + 1];
+        let off_j = w - j; // row r of column j is col_j[r + off_j] (r ≥ lo)
+                           // t_i = A_ij − Σ_{k = max(lo, i−w)}^{i−1} L_ik t_k, in place of A_ij.
+        for i in lo..j {
+            let klo = lo.max(i.saturating_sub(w));
+            let off_i = i * (w + 1) + w - i; // row r of column i is before[r + off_i]
+            let l_i = &before[klo + off_i..i + off_i];
+            let t_k = &col_j[klo + off_j..i + off_j];
+            let mut t = col_j[i + off_j];
+            for (l, tk) in l_i.iter().zip(t_k) {
+                t -= l * tk;
             }
+            col_j[i + off_j] = t;
+        }
+        let mut d = col_j[w];
+        for i in lo..j {
+            let t = col_j[i + off_j];
+            let l = t / before[i * (w + 1) + w];
+            d -= l * t;
+            col_j[i + off_j] = l;
+        }
+        if d == 0.0 || !d.is_finite() {
+            return Err(SolveError::Singular { equation: j });
+        }
+        col_j[w] = d;
+    }
+    Ok(())
+}
+
+/// The band solve; `#[inline(always)]` for the same reason as [`factor_band_dyn`].
+#[inline(always)]
+fn solve_band_dyn(n: usize, w: usize, band: &[f64], x: &mut [f64]) {
+    for j in 0..n {
+        let lo = j.saturating_sub(w);
+        let cj = j * (w + 1) + w - j;
+        let l = &band[lo + cj..j + cj];
+        let mut s = x[j];
+        for (li, xi) in l.iter().zip(&x[lo..j]) {
+            s -= li * xi;
+        }
+        x[j] = s;
+    }
+    for (j, xj) in x.iter_mut().enumerate().take(n) {
+        *xj /= band[j * (w + 1) + w];
+    }
+    for j in (0..n).rev() {
+        let lo = j.saturating_sub(w);
+        let cj = j * (w + 1) + w - j;
+        let l = &band[lo + cj..j + cj];
+        let xj = x[j];
+        for (xi, li) in x[lo..j].iter_mut().zip(l) {
+            *xi -= li * xj;
         }
     }
 }
