@@ -27,5 +27,6 @@ pub mod scene;
 pub mod soil_test;
 pub mod statics;
 pub mod study;
+pub mod sweep;
 
 pub use error::{AppError, SceneError};

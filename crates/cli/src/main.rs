@@ -90,6 +90,35 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Parameter sweep: a plan's key paths varied over a base scene or fatigue study, expanded into
+    /// a sorted list of runs (point × storm); each run writes DIR/runs/<id>.json (a rerun skips the
+    /// runs done), then DIR/sweep.csv and sweep.json merge them. On a cluster, --shard i --shards
+    /// N (or SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT) runs every N-th run; --merge afterwards.
+    Sweep {
+        /// The plan file (TOML with [sweep]).
+        plan: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print the runs, one per line, and stop.
+        #[arg(long)]
+        list: bool,
+        /// Only merge the results already written.
+        #[arg(long)]
+        merge: bool,
+        /// Runs at once.
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
+        /// This shard's index, 0 ≤ i < shards.
+        #[arg(long)]
+        shard: Option<usize>,
+        /// The number of shards.
+        #[arg(long)]
+        shards: Option<usize>,
+        /// Do not print a line per run.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Rainflow counting (ASTM E1049-85) of a series in a CSV file: writes CYCLES.csv with rows
     /// range,mean,count in the order found; with --sn, prints Miner's damage of the series.
     Rainflow {
@@ -186,6 +215,28 @@ fn main() -> ExitCode {
             jobs,
             quiet,
         } => commands::fatigue(&study, &out, jobs, !quiet).map(|t| print!("{t}")),
+        Command::Sweep {
+            plan,
+            out,
+            list,
+            merge,
+            jobs,
+            shard,
+            shards,
+            quiet,
+        } => commands::sweep(
+            &plan,
+            &commands::SweepOptions {
+                out,
+                list,
+                merge_only: merge,
+                jobs,
+                shard,
+                shards,
+                progress: !quiet,
+            },
+        )
+        .map(|t| print!("{t}")),
         Command::Rainflow {
             series,
             out,
