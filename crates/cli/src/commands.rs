@@ -577,13 +577,28 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     });
     let json_path = out.join("sweep.json");
     write_json(&json_path, &js)?;
+    let png = out.join("sweep.png");
+    let title = format!(
+        "{} — sweep of {}",
+        match &plan.base {
+            sweep::Base::Study(s) => s.base.title.clone(),
+            sweep::Base::Scene(s) => s.title.clone(),
+        },
+        plan.parameters
+            .iter()
+            .map(|p| p.key.as_str())
+            .collect::<Vec<_>>()
+            .join(" × ")
+    );
+    catena_io::sweep::figure(&png, &plan, &points, &title)?;
     let failed = points.iter().filter(|p| p.failed.is_some()).count();
     let _ = writeln!(
         text,
-        "  merged {} points ({failed} failed) into {} and {}",
+        "  merged {} points ({failed} failed) into {}, {} and {}",
         points.len(),
         csv_path.display(),
-        json_path.display()
+        json_path.display(),
+        png.display()
     );
     for (p, s) in points.iter().enumerate() {
         let _ = writeln!(

@@ -15,3 +15,4 @@ pub mod plot;
 pub mod report;
 pub mod series;
 pub mod soil;
+pub mod sweep;
