@@ -481,8 +481,10 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     })?;
     let dir = out.join("runs");
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
-    let read = |id: &str, hash: &str| -> Option<RunResult> {
-        let t = std::fs::read_to_string(dir.join(format!("{id}.json"))).ok()?;
+    // Results are kept by the hash of the run's scene, so a plan that gains or loses values
+    // re-runs only the runs whose scene changed.
+    let read = |hash: &str| -> Option<RunResult> {
+        let t = std::fs::read_to_string(dir.join(format!("{hash}.json"))).ok()?;
         let r: RunResult = serde_json::from_str(&t).ok()?;
         (r.scene_hash == hash).then_some(r)
     };
@@ -504,12 +506,12 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
             mine.par_iter()
                 .map(|spec| {
                     let hash = sweep::run_hash(spec);
-                    if read(&spec.id, &hash).is_some_and(|r| r.error.is_none()) {
+                    if read(&hash).is_some_and(|r| r.error.is_none()) {
                         done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
                         return Ok(false);
                     }
                     let r = sweep::run_one(spec);
-                    let path = dir.join(format!("{}.json", spec.id));
+                    let path = dir.join(format!("{hash}.json"));
                     let tmp = path.with_extension("json.tmp");
                     let body = serde_json::to_string(&r).map_err(|e| AppError::Output {
                         path: path.clone(),
@@ -557,7 +559,13 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     }
     let results: Vec<Option<RunResult>> = runs
         .iter()
-        .map(|r| read(&r.id, &sweep::run_hash(r)))
+        .map(|r| {
+            read(&sweep::run_hash(r)).map(|x| RunResult {
+                id: r.id.clone(),
+                point: r.point,
+                ..x
+            })
+        })
         .collect();
     let points = sweep::merge(&plan, &results);
     let csv_path = out.join("sweep.csv");

@@ -95,6 +95,7 @@ fn a_small_plan_runs_resumes_shards_and_merges() {
     let text = commands::sweep(&p, &opts(&out)).expect("sweep");
     println!("{text}");
     let t = rows(&out.join("sweep.csv"));
+    let local_bytes = std::fs::read(out.join("sweep.csv")).expect("local");
     assert_eq!(
         t[0],
         [
@@ -139,6 +140,17 @@ fn a_small_plan_runs_resumes_shards_and_merges() {
     assert!(again.contains("6 runs (4 from an earlier run)"), "{again}");
     assert_eq!(rows(&out.join("sweep.csv")), t);
 
+    // A plan that gains a value re-runs only the new point's runs.
+    let text = std::fs::read_to_string(&p).expect("plan");
+    std::fs::write(
+        &p,
+        text.replace("[100e3, 1000e3, -5.0]", "[100e3, 300e3, 1000e3, -5.0]"),
+    )
+    .expect("plan");
+    let grown = commands::sweep(&p, &opts(&out)).expect("grown");
+    assert!(grown.contains("8 runs (4 from an earlier run)"), "{grown}");
+    std::fs::write(&p, text).expect("plan");
+
     // Two shards, one by flags and one by Slurm's environment, then a merge: the same table.
     let sh = d.join("shards");
     let one = SweepOptions {
@@ -163,9 +175,8 @@ fn a_small_plan_runs_resumes_shards_and_merges() {
         },
     )
     .expect("merge");
-    assert_eq!(
-        std::fs::read(sh.join("sweep.csv")).expect("merged"),
-        std::fs::read(out.join("sweep.csv")).expect("local"),
+    assert!(
+        std::fs::read(sh.join("sweep.csv")).expect("merged") == local_bytes,
         "merged shards differ from the local run"
     );
 }
