@@ -59,7 +59,11 @@ fn sigterm_stops_at_the_next_step_and_keeps_everything() {
         &case,
         heave_text()
             .edit("duration = 100.0", "duration = 3000.0")
-            .edit("envelope_start = 50.0", "envelope_start = 2900.0"),
+            // every step recorded (a 60 000-step run would otherwise record every 0.3 s)
+            .edit(
+                "envelope_start = 50.0",
+                "output_interval = 0.05\nenvelope_start = 2900.0",
+            ),
     )
     .expect("case");
     let out = dir.join("out");
@@ -116,7 +120,12 @@ fn sigkill_leaves_a_readable_results_file() {
     let case = dir.join("long.toml");
     std::fs::write(
         &case,
-        heave_text().edit("duration = 100.0", "duration = 3000.0"),
+        heave_text()
+            .edit("duration = 100.0", "duration = 3000.0")
+            .edit(
+                "envelope_start = 50.0",
+                "output_interval = 0.05\nenvelope_start = 50.0",
+            ),
     )
     .expect("case");
     let out = dir.join("out");
