@@ -287,11 +287,12 @@ impl Plan {
     }
 }
 
-/// The hash a run's result is keyed on: its scene's text, or the edit error.
+/// The hash a run's result is keyed on: its scene's text, or its id and the edit error (two runs
+/// whose edits fail alike must not share a result file).
 pub fn run_hash(spec: &RunSpec) -> String {
     match &spec.scene {
         Ok(s) => crate::scene::text_hash(&s.text),
-        Err(e) => crate::scene::text_hash(e),
+        Err(e) => crate::scene::text_hash(&format!("{}\n{e}", spec.id)),
     }
 }
 

@@ -512,7 +512,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
                     }
                     let r = sweep::run_one(spec);
                     let path = dir.join(format!("{hash}.json"));
-                    let tmp = path.with_extension("json.tmp");
+                    let tmp = dir.join(format!("{hash}.{}.tmp", spec.id));
                     let body = serde_json::to_string(&r).map_err(|e| AppError::Output {
                         path: path.clone(),
                         message: e.to_string(),
