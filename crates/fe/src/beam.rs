@@ -194,7 +194,7 @@ pub fn corotational_beam_chord(
     with_stiffness: bool,
 ) -> BeamResponse {
     let Basis { l, r, q, b1, b2 } = basis(dx, dz);
-    let beta = dz.atan2(dx);
+    let beta = crate::fastmath::atan2(dz, dx);
     let t1 = wrap(theta1 - beta);
     let t2 = wrap(theta2 - beta);
     let u = l - l0;

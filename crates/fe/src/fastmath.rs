@@ -63,6 +63,91 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     (f64::from_bits(sn ^ sin_sign), f64::from_bits(cs ^ cos_sign))
 }
 
+/// `atan(x)` for finite `x` (fdlibm's `atan`: reduction to |x| < 7/16 about 0.5, 1, 1.5 or ∞,
+/// then an 11-term odd polynomial; error below one unit in the last place).
+#[inline]
+fn atan(x: f64) -> f64 {
+    const HI: [f64; 4] = [
+        4.636_476_090_008_061e-1,
+        std::f64::consts::FRAC_PI_4,
+        9.827_937_232_473_29e-1,
+        std::f64::consts::FRAC_PI_2,
+    ];
+    const LO: [f64; 4] = [
+        2.269_877_745_296_168_7e-17,
+        3.061_616_997_868_383e-17,
+        1.390_331_103_123_099_8e-17,
+        6.123_233_995_736_766e-17,
+    ];
+    const AT: [f64; 11] = [
+        3.333_333_333_333_293e-1,
+        -1.999_999_999_987_648_3e-1,
+        1.428_571_427_250_346_6e-1,
+        -1.111_111_040_546_235_6e-1,
+        9.090_887_133_436_507e-2,
+        -7.691_876_205_044_83e-2,
+        6.661_073_137_387_531e-2,
+        -5.833_570_133_790_573e-2,
+        4.976_877_994_615_932e-2,
+        -3.653_157_274_421_691_6e-2,
+        1.628_582_011_536_578_2e-2,
+    ];
+    let a = x.abs();
+    if a >= 7.378_697_629_483_821e19 {
+        // |x| ≥ 2⁶⁶
+        return (HI[3] + LO[3]).copysign(x);
+    }
+    let (id, t) = if a < 0.4375 {
+        (None, x)
+    } else if a < 0.6875 {
+        (Some(0), (2.0 * a - 1.0) / (2.0 + a))
+    } else if a < 1.1875 {
+        (Some(1), (a - 1.0) / (a + 1.0))
+    } else if a < 2.4375 {
+        (Some(2), (a - 1.5) / (1.0 + 1.5 * a))
+    } else {
+        (Some(3), -1.0 / a)
+    };
+    let z = t * t;
+    let w = z * z;
+    let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
+    let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+    match id {
+        None => t - t * (s1 + s2),
+        Some(i) => (HI[i] - ((t * (s1 + s2) - LO[i]) - t)).copysign(x),
+    }
+}
+
+/// `atan2(y, x)`, the angle of `(x, y)` in (−π, π], for finite arguments (within two units in the
+/// last place of the C library's: the quotient `y/x` adds one). `(0, 0)` gives 0 and a NaN gives
+/// NaN, as the C library does.
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    use std::f64::consts::PI;
+    if x.is_nan() || y.is_nan() {
+        return f64::NAN;
+    }
+    if x == 0.0 {
+        return if y == 0.0 {
+            if x.is_sign_negative() {
+                PI.copysign(y)
+            } else {
+                y
+            }
+        } else {
+            std::f64::consts::FRAC_PI_2.copysign(y)
+        };
+    }
+    let z = atan((y / x).abs());
+    if x > 0.0 {
+        z.copysign(y)
+    } else {
+        // π − z, with π's low part (fdlibm's pi_lo) kept.
+        const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
+        (PI - (z - PI_LO)).copysign(y)
+    }
+}
+
 /// `eˣ` for `x ≤ 0`.
 #[inline(always)]
 pub fn exp_nonpositive(x: f64) -> f64 {
@@ -123,6 +208,45 @@ mod tests {
         // A wrong quadrant or a dropped polynomial term is far beyond this.
         assert!((sin_cos(2.0).0 - 2f64.sin()).abs() < 4e-16);
         assert!((sin_cos(-4.0).1 - (-4f64).cos()).abs() < 4e-16);
+    }
+
+    #[test]
+    fn atan2_matches_the_c_library() {
+        let mut worst: f64 = 0.0;
+        let mut state: u64 = 7;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for _ in 0..200_000 {
+            let (y, x) = (
+                next() * 10f64.powf(6.0 * next()),
+                next() * 10f64.powf(6.0 * next()),
+            );
+            let (a, b) = (atan2(y, x), y.atan2(x));
+            worst = worst.max((a - b).abs() / b.abs().max(1e-300));
+        }
+        assert!(worst < 5e-16, "worst relative error {worst:e}");
+        for (y, x) in [
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (0.0, -1.0),
+            (-0.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, -1.0),
+            (1e-300, 1.0),
+            (1.0, 1e-300),
+        ] {
+            let (a, b): (f64, f64) = (atan2(y, x), y.atan2(x));
+            assert!(
+                (a - b).abs() <= 4.5e-16 * b.abs(),
+                "atan2({y}, {x}) = {a}, C library {b}"
+            );
+        }
+        assert!(atan2(f64::NAN, 1.0).is_nan());
     }
 
     #[test]
