@@ -489,8 +489,10 @@ impl Waves {
             // Deep: under water, and every component negligible.
             return Some(Kinematics::default());
         }
-        if sc.t.to_bits() != t.to_bits() || sc.theta.len() != self.components.len() {
-            *sc = self.scratch();
+        if sc.theta.len() != self.components.len() {
+            *sc = self.scratch(); // sized once, on first use
+        }
+        if sc.t.to_bits() != t.to_bits() {
             for (th, c) in sc.theta.iter_mut().zip(&self.components) {
                 *th = Self::time_phase(c, t);
             }
@@ -502,15 +504,7 @@ impl Waves {
         let shallow = z >= -self.stretch_depth;
         let eta = if shallow && r != 0.0 {
             let cols = &self.cols;
-            for (((sp, cp), th), ks) in sc
-                .sp
-                .iter_mut()
-                .zip(&mut sc.cp)
-                .zip(&sc.theta)
-                .zip(&cols.ks)
-            {
-                (*sp, *cp) = sin_cos(th - ks * x);
-            }
+            sc.phases(cols, x, cols.ks.len());
             let mut e = 0.0;
             for (a, cp) in cols.amp.iter().zip(&sc.cp) {
                 e += a * cp;
@@ -530,14 +524,7 @@ impl Waves {
         // keep in registers and vectorise), then the four sums.
         let c = &self.cols;
         if !shallow {
-            for (((sp, cp), th), ks) in sc.sp[..n]
-                .iter_mut()
-                .zip(&mut sc.cp[..n])
-                .zip(&sc.theta)
-                .zip(&c.ks)
-            {
-                (*sp, *cp) = sin_cos(th - ks * x);
-            }
+            sc.phases(c, x, n);
         }
         let (k, e2kd, inv_den, aw, aw2) = (
             &c.k[..n],
@@ -596,6 +583,21 @@ pub struct WaveScratch {
     sp: Vec<f64>,
     cp: Vec<f64>,
     terms: [Vec<f64>; 4],
+}
+
+impl WaveScratch {
+    /// The sine and cosine of the first `n` components' phases `θ − s k x` at `x`.
+    #[inline(always)]
+    fn phases(&mut self, cols: &Columns, x: f64, n: usize) {
+        for (((sp, cp), th), ks) in self.sp[..n]
+            .iter_mut()
+            .zip(&mut self.cp[..n])
+            .zip(&self.theta)
+            .zip(&cols.ks)
+        {
+            (*sp, *cp) = sin_cos(th - ks * x);
+        }
+    }
 }
 
 /// The components' constants as columns (see [`Waves`]).
