@@ -404,3 +404,44 @@ fn an_independent_counter_agrees_cycle_by_cycle() {
         );
     }
 }
+
+/// A second published vector: the example of the `rainflow` package's documentation (PyPI,
+/// `rainflow` 3.1, README "Usage"): `0.2 + 0.5 sin t + 0.2 cos 10t + 0.2 sin 4t` at `t = 4i/200`,
+/// `i = 0..=200`, whose counted ranges (equal ranges merged, sorted) it prints as below. catena's
+/// counter gives the same ten ranges and counts (ranges to 1e-12).
+#[test]
+fn the_rainflow_package_documentation_example() {
+    let signal: Vec<f64> = (0..=200)
+        .map(|i| {
+            let t = 4.0 * i as f64 / 200.0;
+            0.2 + 0.5 * t.sin() + 0.2 * (10.0 * t).cos() + 0.2 * (4.0 * t).sin()
+        })
+        .collect();
+    let published = [
+        (0.04258965150708488, 0.5),
+        (0.10973439445727551, 1.0),
+        (0.11294628078612906, 0.5),
+        (0.2057106991158965, 1.0),
+        (0.21467990941625242, 1.0),
+        (0.4388985979776988, 1.0),
+        (0.48305748051348263, 0.5),
+        (0.5286423866535466, 0.5),
+        (0.7809330293159786, 0.5),
+        (1.4343610172143002, 0.5),
+    ];
+    let mut merged: Vec<(f64, f64)> = Vec::new();
+    for c in count(&signal) {
+        match merged.iter_mut().find(|(r, _)| (r - c.range).abs() < 1e-12) {
+            Some((_, n)) => *n += c.count,
+            None => merged.push((c.range, c.count)),
+        }
+    }
+    merged.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(merged.len(), published.len(), "{merged:?}");
+    for ((r, n), (pr, pn)) in merged.iter().zip(&published) {
+        assert!(
+            (r - pr).abs() < 1e-12 && n == pn,
+            "({r}, {n}) against ({pr}, {pn})"
+        );
+    }
+}
