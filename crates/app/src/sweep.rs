@@ -349,10 +349,9 @@ pub fn run_one(spec: &RunSpec) -> RunResult {
     res
 }
 
-/// Merges the results of every run (in the plan's order; `results[k]` is run `k`'s, `None` when
-/// missing) into one summary per point.
-pub fn merge(plan: &Plan, results: &[Option<RunResult>]) -> Vec<PointSummary> {
-    let runs = plan.runs();
+/// Merges the results of every run of `runs` (the plan's [`Plan::runs`]; `results[k]` is run `k`'s,
+/// `None` when missing) into one summary per point.
+pub fn merge(plan: &Plan, runs: &[RunSpec], results: &[Option<RunResult>]) -> Vec<PointSummary> {
     (0..plan.points.len())
         .map(|p| {
             let mine: Vec<(&RunSpec, Option<&RunResult>)> = runs

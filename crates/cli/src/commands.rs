@@ -567,7 +567,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
             })
         })
         .collect();
-    let points = sweep::merge(&plan, &results);
+    let points = sweep::merge(&plan, &runs, &results);
     let csv_path = out.join("sweep.csv");
     std::fs::write(&csv_path, sweep::csv(&plan, &points))
         .map_err(|e| AppError::io(&csv_path, e))?;

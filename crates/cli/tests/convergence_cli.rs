@@ -160,12 +160,7 @@ fn fatigue_damage_is_a_key_output() {
         dir.join("semi-rao.csv"),
     )
     .expect("rao");
-    let text = std::fs::read_to_string(root().join("cases/scr1000/storm23.toml"))
-        .expect("case")
-        .edit("duration = 1800.0 ", "duration = 30.0 ")
-        .edit("envelope_start = 200.0 ", "envelope_start = 20.0 ")
-        .edit("\nstart = 200.0 ", "\nstart = 20.0 ")
-        .edit("ramp = 100.0 ", "ramp = 10.0 ");
+    let text = common::short_storm23(&root());
     let case = dir.join("storm.toml");
     std::fs::write(&case, text).expect("case");
     let st = convergence::study(

@@ -271,12 +271,7 @@ fn restart_into_the_same_directory_continues_the_results_file() {
 #[test]
 fn a_storm_resynthesises_from_its_recorded_components() {
     let dir = tmp("storm");
-    let text = std::fs::read_to_string(root().join("cases/scr1000/storm23.toml"))
-        .expect("case")
-        .edit("duration = 1800.0 ", "duration = 30.0 ")
-        .edit("envelope_start = 200.0 ", "envelope_start = 20.0 ")
-        .edit("\nstart = 200.0 ", "\nstart = 20.0 ")
-        .edit("ramp = 100.0 ", "ramp = 10.0 ");
+    let text = common::short_storm23(&root());
     std::fs::copy(
         root().join("cases/scr1000/semi-rao.csv"),
         dir.join("semi-rao.csv"),

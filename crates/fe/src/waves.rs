@@ -160,16 +160,11 @@ pub struct Waves {
     pub ramp: f64,
     /// A bound on the elevation, `min(Σ a_i, 12σ)`, m.
     eta_bound: f64,
-    /// `max a_i ω_i` and `Σ a_i ω_i`, m/s: the truncation bound (see [`Waves::kinematics`]).
-    aw_max: f64,
+    /// `Σ a_i ω_i`, m/s: the truncation bound (see [`Waves::kinematics`]).
     aw_sum: f64,
-    /// Per component, `e^{−2kd}` and `1/(1 − e^{−2kd})`.
-    depth_factors: Vec<(f64, f64)>,
     /// The components as columns for the kinematics loops: `s·k`, `k`, `a`, `aω`, `aω²`,
-    /// `e^{−2kd}` and `1/(1 − e^{−2kd})`.
+    /// `e^{−2kd}`, `1/(1 − e^{−2kd})` and the truncation bound `ln max_{j≥i} a_j ω_j`.
     cols: Columns,
-    /// Per component i, `max_{j ≥ i} a_j ω_j`, m/s.
-    tail_max: Vec<f64>,
     /// Below this depth (m below the still water level) stretching is left out (see
     /// [`Waves::kinematics`]).
     stretch_depth: f64,
@@ -233,10 +228,6 @@ impl Waves {
             .map(|c| c.amplitude.abs())
             .sum::<f64>()
             .min(12.0 * m0.sqrt());
-        let aw_max = components
-            .iter()
-            .map(|c| (c.amplitude * c.omega).abs())
-            .fold(0.0, f64::max);
         let aw_sum = components
             .iter()
             .map(|c| (c.amplitude * c.omega).abs())
@@ -287,11 +278,8 @@ impl Waves {
             depth,
             ramp,
             eta_bound,
-            aw_max,
             aw_sum,
             cols,
-            depth_factors,
-            tail_max,
             stretch_depth,
         }
     }

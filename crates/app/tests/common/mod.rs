@@ -16,3 +16,16 @@ impl Edit for str {
         self.replace(from, to)
     }
 }
+
+/// `cases/scr1000/storm23.toml` shortened to 30 s (10 s ramp, envelopes and fatigue from 20 s), for
+/// tests that need a short storm with waves, a vessel and fatigue. Its RAO file must be copied
+/// beside the written scene.
+#[allow(dead_code)]
+pub fn short_storm23(root: &std::path::Path) -> String {
+    std::fs::read_to_string(root.join("cases/scr1000/storm23.toml"))
+        .expect("case")
+        .edit("duration = 1800.0 ", "duration = 30.0 ")
+        .edit("envelope_start = 200.0 ", "envelope_start = 20.0 ")
+        .edit("\nstart = 200.0 ", "\nstart = 20.0 ")
+        .edit("ramp = 100.0 ", "ramp = 10.0 ")
+}
