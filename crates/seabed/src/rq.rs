@@ -34,6 +34,15 @@ use serde::{Deserialize, Serialize};
 
 use crate::{check, ParamError};
 
+/// The lift-off band, in units of `D/Kmax` (`1/k`): over the last `LIFTOFF_BAND/k` of an uplift
+/// above the mudline a positive force `P` is scaled by `z·k/LIFTOFF_BAND` to zero. The literal eq. 5
+/// keeps `P5(0⁺) > 0` (up to a third of `P0` on a stiff clay), a jump to the lift-off's `P = 0` that no
+/// equilibrium can sit on: Newton's method then alternates between the two sides for ever, at any
+/// time step (issue 14's hard soils). The band, 10⁻³ of the normalised stiffness length (1.1 µm for
+/// the 1000 m SCR), makes the force continuous with a positive slope there and changes nothing
+/// outside it.
+pub const LIFTOFF_BAND: f64 = 1e-3;
+
 /// The model parameters (the paper's Tables 1–4). Strengths in Pa, so `P` comes out in N/m.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RqParams {
@@ -458,6 +467,13 @@ impl RandolphQuiggin {
             if p > pip {
                 (p, dp, branch) = (pip, dpip, Branch::LiftoffSmoothing);
             }
+        }
+        // The lift-off band: a positive uplift force is taken linearly to zero over the last
+        // `LIFTOFF_BAND·D/Kmax` above the mudline, so that the force is continuous at lift-off.
+        let band = LIFTOFF_BAND / self.k;
+        if p > 0.0 && z < band {
+            let s = z / band;
+            (p, dp) = (p * s, dp * s + p / band);
         }
         (p, dp, branch, z_p0_eff)
     }

@@ -129,8 +129,26 @@ fn tangent_liftoff_smoothing() {
     let mut h0 = RqHistory::untouched(0.0);
     walk(&l0, &mut h0, 0.05 * d, d / 1000.0);
     walk(&l0, &mut h0, 0.01 * d, d / 1000.0);
-    let jump = l0.evaluate(&h0, 1e-9 * d).p / l0.pu(0.05 * d).0;
-    assert!(jump > 0.005, "the literal eq. 5 lift-off jump: {jump}");
+    // Just above the lift-off band, the literal eq. 5 leaves a clear positive force …
+    let band = catena_seabed::rq::LIFTOFF_BAND * d / p.k_max;
+    let jump = l0.evaluate(&h0, 2.0 * band).p / l0.pu(0.05 * d).0;
+    assert!(
+        jump > 0.005,
+        "the literal eq. 5 force near lift-off: {jump}"
+    );
+    // … which the band takes linearly to zero at the mudline (continuous, tangent exact inside).
+    let inside = l0.evaluate(&h0, 1e-3 * band).p / l0.pu(0.05 * d).0;
+    assert!(
+        inside.abs() < 1e-3 * jump + 1e-12,
+        "P inside the band {inside}"
+    );
+    check_fd(&l0, &h0, 0.5 * band, Branch::Uplift);
+    let near = l0.evaluate(&h0, band * (1.0 + 1e-9)).p;
+    let at = l0.evaluate(&h0, band * (1.0 - 1e-9)).p;
+    assert!(
+        (near - at).abs() < 1e-6 * near.abs(),
+        "{near} vs {at} across the band's edge"
+    );
 }
 
 #[test]
