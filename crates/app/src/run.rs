@@ -49,13 +49,53 @@ pub struct DynamicRun {
     pub cuts: u32,
     /// Predictor retries in all (see `catena_fe::dynamics`).
     pub retries: u32,
+    /// The steps that were cut, when, where and how much (the first [`MAX_CUT_LOG`]).
+    pub cut_log: Vec<CutEvent>,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
     /// Why the run ended before its duration, if it did.
     pub stop: Option<Stop>,
 }
 
+/// The cut steps kept in [`DynamicRun::cut_log`] (the count in [`DynamicRun::cuts`] is of all).
+pub const MAX_CUT_LOG: usize = 1000;
+
+/// A step that had to be cut: when, where and how much.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CutEvent {
+    /// The time at the start of the step, s.
+    pub t: f64,
+    /// The cuts the step needed.
+    pub cuts: u32,
+    /// The Δt of the last attempt that failed, s.
+    pub dt: f64,
+    /// That attempt's relative residual.
+    pub residual: f64,
+    /// The node with the largest residual entry, and its arc length from the top, m.
+    pub node: usize,
+    /// The node's arc length, m.
+    pub arc: f64,
+}
+
 impl DynamicRun {
+    /// Where the steps were cut: the arc lengths (m) of the nodes that failed most often, with the
+    /// number of cut steps at each, most first (at most `n`).
+    pub fn cut_hotspots(&self, n: usize) -> Vec<(f64, usize)> {
+        let mut by_node: Vec<(usize, usize)> = Vec::new();
+        for c in &self.cut_log {
+            match by_node.iter_mut().find(|(node, _)| *node == c.node) {
+                Some(e) => e.1 += 1,
+                None => by_node.push((c.node, 1)),
+            }
+        }
+        by_node.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+        by_node
+            .into_iter()
+            .take(n)
+            .map(|(node, count)| (self.model.line.arc[node], count))
+            .collect()
+    }
+
     /// Whether the run reached its duration.
     pub fn completed(&self) -> bool {
         self.stop.is_none()
@@ -208,6 +248,7 @@ pub fn run(
         each(builtin, extra, |o| o.start(&ctx, &first, restarted))?;
     }
     let (mut iterations, mut cuts, mut retries) = (0usize, 0u32, 0u32);
+    let mut cut_log = Vec::new();
     let mut stop = None;
     let mut steps = first_step - 1;
     for k in first_step..=n_steps {
@@ -215,6 +256,18 @@ pub fn run(
             Ok(info) => {
                 iterations += info.iterations;
                 cuts += info.cuts;
+                if let Some(c) = info.last_cut {
+                    if cut_log.len() < MAX_CUT_LOG {
+                        cut_log.push(CutEvent {
+                            t: (k - 1) as f64 * spec.dt,
+                            cuts: info.cuts,
+                            dt: c.dt,
+                            residual: c.residual,
+                            node: c.node,
+                            arc: dm.line.arc[c.node],
+                        });
+                    }
+                }
                 retries += info.retries;
                 steps = k;
                 state.t = k as f64 * spec.dt;
@@ -296,6 +349,7 @@ pub fn run(
         iterations,
         cuts,
         retries,
+        cut_log,
         wall_seconds: t0.elapsed().as_secs_f64(),
         stop,
     })

@@ -289,6 +289,20 @@ pub struct StepInfo {
     pub retries: u32,
     /// Sub-steps taken (1 without cuts).
     pub substeps: usize,
+    /// The attempt that caused the last cut, if there was one: where and how much.
+    pub last_cut: Option<CutCause>,
+}
+
+/// Why a step was cut: the failed attempt's Δt, its last iteration's relative residual and the node
+/// with the largest residual entry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CutCause {
+    /// The Δt of the failed attempt, s.
+    pub dt: f64,
+    /// The relative residual at the attempt's last iteration.
+    pub residual: f64,
+    /// The node with the largest residual entry.
+    pub node: usize,
 }
 
 /// The part of the Workspace that changes converged bits: the tangent factorised last and the Δt it
@@ -888,6 +902,11 @@ pub fn advance(
                 }
                 level += 1;
                 info.cuts += 1;
+                info.last_cut = Some(CutCause {
+                    dt: h_try,
+                    residual,
+                    node,
+                });
                 h *= 0.5;
             }
         }

@@ -177,6 +177,10 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         "newton_iterations": r.iterations,
         "iterations_per_step": if r.steps > 0 { num(r.iterations as f64 / r.steps as f64) } else { Value::Null },
         "step_cuts": r.cuts,
+        "cut_steps": r.cut_log.iter().map(|c| json!({
+            "t": c.t, "step_cuts": c.cuts, "dt": c.dt, "relative_residual": num(c.residual),
+            "node": c.node, "arc": c.arc,
+        })).collect::<Vec<_>>(),
         "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
         "envelope_start": r.spec.envelope_start,
@@ -228,6 +232,25 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
         r.retries,
         r.wall_seconds
     );
+    if !r.cut_log.is_empty() {
+        let spots: Vec<String> = r
+            .cut_hotspots(3)
+            .iter()
+            .map(|(arc, n)| format!("{arc:.1} m ({n})"))
+            .collect();
+        let _ = writeln!(
+            t,
+            "  {} steps were cut, first at t = {} s; where (arc length, steps): {}{}",
+            r.cut_log.len(),
+            r.cut_log[0].t,
+            spots.join(", "),
+            if r.cut_log.len() >= run::MAX_CUT_LOG {
+                " (the first 1000 listed)"
+            } else {
+                ""
+            }
+        );
+    }
     let _ = writeln!(t, "  from t = {} s:", r.spec.envelope_start);
     let _ = writeln!(
         t,
