@@ -101,6 +101,9 @@ pub struct SoilTestCase {
     pub cycle_of_leg: Vec<usize>,
 }
 
+/// The largest soil element test (increments, and legs) a case may ask for: 10⁷, a few seconds.
+pub const MAX_INCREMENTS: f64 = 1e7;
+
 impl SoilTestCase {
     /// Reads and checks a case file.
     pub fn read(path: &Path) -> Result<Self, AppError> {
@@ -129,6 +132,45 @@ impl SoilTestCase {
                 "test.step",
                 format!("a finite step > 0 (got {})", t.step),
             ));
+        }
+        // The test's size, before any leg is built: increments along the waypoints, then each
+        // cycle's legs (a `to` leg bounded by its target's distance from the largest value seen).
+        let mut increments: f64 = t
+            .waypoints
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs() / t.step)
+            .sum();
+        let mut largest = t.waypoints.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+        let mut leg_count = t.waypoints.len() as f64;
+        let limit = |increments: f64, legs: f64, key: String| -> Result<(), SceneError> {
+            if increments > MAX_INCREMENTS || legs > MAX_INCREMENTS {
+                Err(invalid(
+                    file,
+                    key,
+                    format!(
+                        "a test of at most {MAX_INCREMENTS:e} increments and legs (this one asks for about {:.1e}); check the steps and cycle counts",
+                        increments.max(legs)
+                    ),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        limit(increments, leg_count, "test.step".into())?;
+        for (ci, c) in t.cycles.iter().enumerate() {
+            let ck = format!("test.cycles[{ci}]");
+            let mut per_cycle = 0.0;
+            for l in &c.legs {
+                let step = l.step.unwrap_or(t.step);
+                let v = l.to.or(l.by).unwrap_or(0.0);
+                if step > 0.0 {
+                    per_cycle += (v.abs() + largest) / step;
+                }
+                largest = largest.max(v.abs());
+            }
+            increments += c.count as f64 * per_cycle;
+            leg_count += c.count as f64 * c.legs.len() as f64;
+            limit(increments, leg_count, format!("{ck}.count"))?;
         }
         let mut legs = element_test::legs_through(t.control.into(), &t.waypoints, t.step);
         let mut origins: Vec<String> = (0..legs.len())

@@ -137,6 +137,13 @@ enum Command {
         #[arg(long, default_value_t = 1.0)]
         scf: f64,
     },
+    /// Reads and checks a scene, a fatigue study, a sweep plan or a soil test without running it:
+    /// prints what would run (the effects built, elements, steps, estimated time, memory and disk)
+    /// and every warning. Exits with 2 and the error if the file is wrong.
+    Check {
+        /// The file (TOML).
+        case: PathBuf,
+    },
     /// Static configuration of a riser or pipeline on the seabed (initial-penetration mode only).
     /// Writes DIR/results.h5, DIR/summary.json and DIR/static.png.
     Static {
@@ -245,6 +252,7 @@ fn main() -> ExitCode {
             scf,
         } => commands::rainflow(&series, &out, column.as_deref(), sn.as_deref(), scf)
             .map(|t| print!("{t}")),
+        Command::Check { case } => commands::check(&case).map(|t| print!("{t}")),
         Command::Static { case, out } => commands::static_(&case, &out).map(|t| print!("{t}")),
     };
     match result {

@@ -66,7 +66,11 @@ pub fn read_text(path: &Path) -> Result<String, AppError> {
 }
 
 /// Parses TOML `text` (from `file`) into `T`. The TOML reader's message names the key and the line.
+/// Every number is checked first ([`check_numbers`]).
 pub fn parse<T: DeserializeOwned>(file: &str, text: &str) -> Result<T, SceneError> {
+    if let Ok(doc) = text.parse::<toml::Table>() {
+        check_numbers(file, &doc)?;
+    }
     toml::from_str(text).map_err(|e| SceneError::Parse {
         file: file.to_string(),
         message: e.to_string().trim_end().to_string(),
@@ -76,6 +80,7 @@ pub fn parse<T: DeserializeOwned>(file: &str, text: &str) -> Result<T, SceneErro
 /// Reads a TOML document (`file` names it in messages) into `T`: for scenes built from an edited
 /// document.
 pub fn from_doc<T: DeserializeOwned>(file: &str, doc: &toml::Table) -> Result<T, SceneError> {
+    check_numbers(file, doc)?;
     toml::Value::Table(doc.clone())
         .try_into()
         .map_err(|e: toml::de::Error| SceneError::Parse {
@@ -107,4 +112,77 @@ pub fn text_hash(text: &str) -> String {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     format!("{h:016x}")
+}
+
+/// The largest magnitude any number in a scene may have (SI units): 10¹². Larger values (1e300 for a
+/// stiffness, a current or a waypoint) are typing slips that would overflow the solve into `inf` and
+/// `NaN`, or ask for unbounded work; they are refused before anything runs.
+pub const MAX_MAGNITUDE: f64 = 1e12;
+
+/// Checks every number of a scene document, before anything else: finite (`nan` and `inf` are
+/// refused) and within ±[`MAX_MAGNITUDE`]. Integers named `seed` are exempt (any 64-bit seed).
+/// The error names the key path (`motion.harmonic.heave`, `current.profile[1][0]`).
+pub fn check_numbers(file: &str, doc: &toml::Table) -> Result<(), SceneError> {
+    fn walk(file: &str, path: &str, v: &toml::Value) -> Result<(), SceneError> {
+        let bad = |x: String| {
+            Err(invalid(
+                file,
+                path,
+                format!(
+                    "a finite number of magnitude at most {MAX_MAGNITUDE:e} in SI units (got {x})"
+                ),
+            ))
+        };
+        match v {
+            toml::Value::Float(x) if !x.is_finite() || x.abs() > MAX_MAGNITUDE => {
+                return bad(format!("{x:e}"));
+            }
+            toml::Value::Integer(i)
+                if path.rsplit('.').next() != Some("seed") && (*i as f64).abs() > MAX_MAGNITUDE =>
+            {
+                return bad(format!("{i:e}"));
+            }
+            toml::Value::Array(a) => {
+                for (k, x) in a.iter().enumerate() {
+                    walk(file, &format!("{path}[{k}]"), x)?;
+                }
+            }
+            toml::Value::Table(t) => {
+                for (k, x) in t {
+                    let p = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(file, &p, x)?;
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+    for (k, v) in doc {
+        walk(file, k, v)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_checked_by_key_path() {
+        let doc: toml::Table =
+            "a = 1.0\n[b]\nc = [[0.0, 1.0], [2.0, nan]]\nseed = 12345678901234\n"
+                .parse()
+                .expect("toml");
+        let e = check_numbers("f.toml", &doc).expect_err("nan").to_string();
+        assert!(e.contains("f.toml") && e.contains("`b.c[1][1]`"), "{e}");
+        let ok: toml::Table = "seed = 12345678901234\nx = 1e12".parse().expect("toml");
+        assert!(check_numbers("f.toml", &ok).is_ok());
+        let big: toml::Table = "[line]\nea = 1e300".parse().expect("toml");
+        let e = check_numbers("f.toml", &big).expect_err("big").to_string();
+        assert!(e.contains("`line.ea`") && e.contains("1e300"), "{e}");
+    }
 }

@@ -415,6 +415,128 @@ pub struct RiserFile {
     pub fatigue: Option<FatigueTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
+    pub limits: Option<LimitsTable>,
+}
+
+/// `[limits]`: the largest run a scene may ask for. A run is sized before anything is built (elements
+/// from the mesh, steps from the duration and time step, records and their bytes from the output
+/// interval) and refused beyond these, so that a slip (`element_length = 1e-5`, `duration = 1e9`)
+/// gets an error instead of hours of work or gigabytes of memory. Raise them here for a genuinely
+/// large run.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsTable {
+    /// Elements (default 50 000).
+    #[serde(default = "default_max_elements")]
+    pub max_elements: f64,
+    /// Time steps of `dynamic.time_step` (default 10 000 000: 139 hours at 0.05 s).
+    #[serde(default = "default_max_steps")]
+    pub max_steps: f64,
+    /// Bytes of `results.h5` records (default 20 GB).
+    #[serde(default = "default_max_output_bytes")]
+    pub max_output_bytes: f64,
+}
+
+impl Default for LimitsTable {
+    fn default() -> Self {
+        Self {
+            max_elements: default_max_elements(),
+            max_steps: default_max_steps(),
+            max_output_bytes: default_max_output_bytes(),
+        }
+    }
+}
+
+fn default_max_elements() -> f64 {
+    50_000.0
+}
+fn default_max_steps() -> f64 {
+    1e7
+}
+fn default_max_output_bytes() -> f64 {
+    20e9
+}
+
+/// Bytes recorded per node per record in `/dynamic` (x, z, rotation, effective and wall tension,
+/// moment, curvature, penetration, seabed force as f64 and the seabed mode).
+pub const RECORD_BYTES_PER_NODE: f64 = 9.0 * 8.0 + 1.0;
+
+/// What a scene would run: its size, estimated before anything is built.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSize {
+    /// Elements of the mesh.
+    pub elements: usize,
+    /// Time steps of the dynamics (0 for a static scene).
+    pub steps: u64,
+    /// Records written to `results.h5`.
+    pub records: u64,
+    /// Bytes of those records (uncompressed).
+    pub output_bytes: f64,
+}
+
+/// A scene's size from its tables alone, checked against `[limits]` (the error names the key to
+/// change and the limit to raise).
+pub fn run_size(file: &str, raw: &RiserFile) -> Result<RunSize, SceneError> {
+    let lim = raw.limits.unwrap_or_default();
+    let mut elements = 0.0f64;
+    let mut from = 0.0;
+    for m in &raw.mesh {
+        if m.element_length > 0.0 && m.to > from {
+            elements += ((m.to - from) / m.element_length).ceil();
+            from = m.to;
+        }
+    }
+    if elements > lim.max_elements {
+        return Err(invalid(
+            file,
+            "mesh",
+            format!(
+                "at most {:e} elements (this mesh has {elements:e}); check each mesh[i].element_length, or raise limits.max_elements",
+                lim.max_elements
+            ),
+        ));
+    }
+    let (mut steps, mut records) = (0.0f64, 0.0f64);
+    if let Some(d) = &raw.dynamic {
+        if d.time_step > 0.0 && d.duration > 0.0 {
+            steps = (d.duration / d.time_step).ceil();
+            if steps > lim.max_steps {
+                return Err(invalid(
+                    file,
+                    "dynamic.duration",
+                    format!(
+                        "at most {:e} time steps (duration / time_step = {steps:e}); check dynamic.duration and dynamic.time_step, or raise limits.max_steps",
+                        lim.max_steps
+                    ),
+                ));
+            }
+            let out = d
+                .output_interval
+                .unwrap_or(d.time_step * (steps / DEFAULT_MAX_RECORDS).ceil().max(1.0));
+            if out > 0.0 {
+                records = (d.duration / out.max(d.time_step)).floor() + 1.0;
+            }
+        }
+    }
+    let output_bytes = records * (elements + 1.0) * RECORD_BYTES_PER_NODE;
+    if output_bytes > lim.max_output_bytes {
+        return Err(invalid(
+            file,
+            "dynamic.output_interval",
+            format!(
+                "records of at most {:.1} GB ({records:e} records of {} nodes would be {:.1} GB); lengthen dynamic.output_interval, or raise limits.max_output_bytes",
+                lim.max_output_bytes / 1e9,
+                elements + 1.0,
+                output_bytes / 1e9
+            ),
+        ));
+    }
+    Ok(RunSize {
+        elements: elements as usize,
+        steps: steps as u64,
+        records: records as u64,
+        output_bytes,
+    })
 }
 
 /// A riser scene, read and checked.
@@ -445,6 +567,8 @@ pub struct RiserScene {
     pub hydro: Option<Hydro>,
     /// The dynamic analysis, if the scene has a `[dynamic]` table.
     pub dynamic: Option<DynamicSpec>,
+    /// The run's size, estimated from the tables (checked against `[limits]`).
+    pub size: RunSize,
 }
 
 /// What the dynamic tables need to know of the site.
@@ -455,6 +579,27 @@ struct Site {
     water_density: f64,
     gravity: f64,
     top_x: f64,
+}
+
+/// A Newton tolerance: relative, in (0, 10⁻³] (a looser one would accept unconverged answers).
+fn tolerance_in_range(file: &str, key: &str, v: f64) -> Result<(), SceneError> {
+    if v > 0.0 && v <= 1e-3 {
+        Ok(())
+    } else {
+        Err(invalid(
+            file,
+            key,
+            format!("a relative tolerance in (0, 1e-3] (got {v:e})"),
+        ))
+    }
+}
+
+fn iterations_at_least_one(file: &str, key: &str, v: usize) -> Result<(), SceneError> {
+    if v >= 1 {
+        Ok(())
+    } else {
+        Err(invalid(file, key, "at least 1 iteration (got 0)"))
+    }
 }
 
 fn positive(file: &str, key: &str, v: f64, what: &str) -> Result<f64, SceneError> {
@@ -605,6 +750,7 @@ impl RiserScene {
         if raw.mesh.is_empty() {
             return Err(invalid(file, "mesh", "at least one [[mesh]] section"));
         }
+        let size = run_size(file, raw)?;
         let mut segments = Vec::new();
         let mut from = 0.0;
         for (i, m) in raw.mesh.iter().enumerate() {
@@ -725,6 +871,75 @@ impl RiserScene {
                 format!("a height within the water depth {} m", env.water_depth),
             ));
         }
+        if e.top_z <= 0.5 * l.od {
+            return Err(invalid(
+                file,
+                "ends.top_z",
+                format!(
+                    "a top end above the mudline: height in m above it, > od/2 = {} m (got {})",
+                    0.5 * l.od,
+                    e.top_z
+                ),
+            ));
+        }
+        if anchor_z > env.water_depth {
+            return Err(invalid(
+                file,
+                "ends.anchor_z",
+                format!(
+                    "an anchor below the sea surface (height above the mudline at most the water depth {} m, got {anchor_z})",
+                    env.water_depth
+                ),
+            ));
+        }
+        if anchor_z < -2.0 * l.od {
+            return Err(invalid(
+                file,
+                "ends.anchor_z",
+                format!(
+                    "an anchor at most 2 diameters ({} m) below the mudline (got {anchor_z} m): catena models no buried line",
+                    2.0 * l.od
+                ),
+            ));
+        }
+        if e.top_z <= anchor_z {
+            return Err(invalid(
+                file,
+                "ends.top_z",
+                format!("a top end above the anchor (anchor_z = {anchor_z} m)"),
+            ));
+        }
+        if let Some(st) = &raw.statics {
+            tolerance_in_range(file, "static.tolerance", st.tolerance)?;
+            iterations_at_least_one(file, "static.max_iterations", st.max_iterations)?;
+        }
+        if let Some(d) = &raw.dynamic {
+            tolerance_in_range(file, "dynamic.tolerance", d.tolerance)?;
+            iterations_at_least_one(file, "dynamic.max_iterations", d.max_iterations)?;
+            if d.max_step_cuts > 20 {
+                return Err(invalid(
+                    file,
+                    "dynamic.max_step_cuts",
+                    format!("at most 20 halvings (Δt/10⁶), got {}", d.max_step_cuts),
+                ));
+            }
+        }
+        // `[f64; 2]` would read the first two numbers of a longer entry and drop the rest.
+        if let Some(toml::Value::Array(rows)) = doc
+            .get("current")
+            .and_then(|c| c.as_table())
+            .and_then(|c| c.get("profile"))
+        {
+            for (i, r) in rows.iter().enumerate() {
+                if r.as_array().map(Vec::len) != Some(2) {
+                    return Err(invalid(
+                        file,
+                        format!("current.profile[{i}]"),
+                        "a pair [height above the mudline in m, speed in m/s]",
+                    ));
+                }
+            }
+        }
         let _ = required::<f64>;
         let hydro = hydro_of(file, raw, env.water_density)?;
         let dynamic = match &raw.dynamic {
@@ -762,6 +977,40 @@ impl RiserScene {
                 None
             }
         };
+        if let Some(m) = dynamic.as_ref().and_then(|d| d.motion.as_ref()) {
+            // The prescribed top motion's extreme offsets (a harmonic moves along the segment between
+            // ±(surge, heave); staged and series motions are piecewise linear between their points).
+            let corners: Vec<(f64, f64)> = match m {
+                TopMotion::Harmonic { surge, heave, .. } => {
+                    vec![(*surge, *heave), (-surge, -heave)]
+                }
+                TopMotion::Staged(st) => {
+                    let (mut x, mut z) = (0.0, 0.0);
+                    st.iter()
+                        .map(|(d, vx, vz)| {
+                            x += d * vx;
+                            z += d * vz;
+                            (x, z)
+                        })
+                        .collect()
+                }
+                TopMotion::Series(pts) => pts.iter().map(|p| (p.1, p.2)).collect(),
+            };
+            for (dx, dz) in corners {
+                let (x, z) = (e.top_x + dx, e.top_z + dz);
+                let reach = ((x - e.anchor_x).powi(2) + (z - anchor_z).powi(2)).sqrt();
+                if reach >= l.length || z <= 0.5 * l.od {
+                    return Err(invalid(
+                        file,
+                        "motion",
+                        format!(
+                            "a top motion that keeps the top above the mudline and within the line's reach: at its extreme offset ({dx:.3}, {dz:.3}) m the top is at ({x:.3}, {z:.3}) m, {reach:.3} m from the anchor, with a line of {} m",
+                            l.length
+                        ),
+                    ));
+                }
+            }
+        }
         Ok(Self {
             file: file.to_string(),
             text,
@@ -784,6 +1033,7 @@ impl RiserScene {
             line: (ea, ei, weight, mass),
             hydro,
             dynamic,
+            size,
         })
     }
 }
@@ -993,10 +1243,24 @@ fn dynamic_spec(
                     if line.trim().is_empty() {
                         continue;
                     }
-                    let v: Vec<f64> = line
-                        .split(',')
-                        .filter_map(|x| x.trim().parse().ok())
-                        .collect();
+                    let mut v = Vec::with_capacity(3);
+                    for (c, cell) in line.split(',').enumerate() {
+                        match cell.trim().parse::<f64>() {
+                            Ok(x) if x.is_finite() && x.abs() <= super::MAX_MAGNITUDE => v.push(x),
+                            _ => {
+                                return Err(invalid(
+                                    file,
+                                    "motion.series.file",
+                                    format!(
+                                        "{path}: line {}, column {}: a finite number (got \"{}\")",
+                                        ln + 1,
+                                        c + 1,
+                                        cell.trim()
+                                    ),
+                                ))
+                            }
+                        }
+                    }
                     if v.len() != 3 || pts.last().is_some_and(|p: &(f64, f64, f64)| v[0] <= p.0) {
                         return Err(invalid(
                             file,
@@ -1030,6 +1294,16 @@ fn dynamic_spec(
                 file,
                 format!("gauge[{i}].name"),
                 "a non-empty name without '/'",
+            ));
+        }
+        if let Some(j) = raw.gauge[..i].iter().position(|o| o.name == g.name) {
+            return Err(invalid(
+                file,
+                format!("gauge[{i}].name"),
+                format!(
+                    "a name no other gauge has (gauge[{j}] is also \"{}\")",
+                    g.name
+                ),
             ));
         }
         match (g.arc, g.midway_touchdown_lift) {

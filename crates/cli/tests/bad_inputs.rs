@@ -1,0 +1,280 @@
+//! Bad input, one row per input (issue 14): each mutation of a real case must be refused by
+//! `catena check` (the same reading `catena run` does, before anything runs) with an error that names
+//! the file and the key, never a panic and never silently accepted. Every row's mutation must apply
+//! (a row whose text is absent fails).
+
+use std::path::{Path, PathBuf};
+
+use catena_cli::commands;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// `(name, case, text to replace, replacement, the key the message must name)`.
+const ROWS: &[(&str, &str, &str, &str, &str)] = &[
+    (
+        "heave nan",
+        "benchmarks/scr-heave",
+        "heave = 2.0",
+        "heave = nan",
+        "motion.harmonic.heave",
+    ),
+    (
+        "EA 1e300",
+        "benchmarks/scr-heave",
+        "ea = 3.356e9",
+        "ea = 1e300",
+        "line.ea",
+    ),
+    (
+        "EI 1e300",
+        "benchmarks/scr-heave",
+        "ei = 17.59e6",
+        "ei = 1e300",
+        "line.ei",
+    ),
+    (
+        "weight 1e300",
+        "benchmarks/scr-heave",
+        "submerged_weight = 1010.0",
+        "submerged_weight = 1e300",
+        "line.submerged_weight",
+    ),
+    (
+        "anchor_z nan",
+        "benchmarks/scr-heave",
+        "anchor_x = 0.0",
+        "anchor_x = 0.0\nanchor_z = nan",
+        "ends.anchor_z",
+    ),
+    (
+        "top below the mudline",
+        "benchmarks/scr-heave",
+        "top_z = 1000.0",
+        "top_z = -1.0",
+        "ends.top_z",
+    ),
+    (
+        "anchor above the sea",
+        "benchmarks/scr-heave",
+        "anchor_x = 0.0",
+        "anchor_x = 0.0\nanchor_z = 1100.0",
+        "ends.anchor_z",
+    ),
+    (
+        "anchor 200 m below the mudline",
+        "benchmarks/scr-heave",
+        "anchor_x = 0.0",
+        "anchor_x = 0.0\nanchor_z = -200.0",
+        "ends.anchor_z",
+    ),
+    (
+        "heave beyond the line's reach",
+        "benchmarks/scr-heave",
+        "heave = 2.0",
+        "heave = 700.0",
+        "motion",
+    ),
+    (
+        "surge beyond the line's reach",
+        "benchmarks/scr-heave",
+        "heave = 2.0",
+        "heave = 2.0\nsurge = 900.0",
+        "motion",
+    ),
+    (
+        "static tolerance 1",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[static]\ntolerance = 1.0\n\n[dynamic]",
+        "static.tolerance",
+    ),
+    (
+        "static tolerance nan",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[static]\ntolerance = nan\n\n[dynamic]",
+        "static.tolerance",
+    ),
+    (
+        "static tolerance -1",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[static]\ntolerance = -1.0\n\n[dynamic]",
+        "static.tolerance",
+    ),
+    (
+        "static max_iterations 0",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[static]\nmax_iterations = 0\n\n[dynamic]",
+        "static.max_iterations",
+    ),
+    (
+        "dynamic max_iterations 0",
+        "benchmarks/scr-heave",
+        "scheme = \"hht\"",
+        "scheme = \"hht\"\nmax_iterations = 0",
+        "dynamic.max_iterations",
+    ),
+    (
+        "max_step_cuts 1000",
+        "benchmarks/scr-heave",
+        "scheme = \"hht\"",
+        "scheme = \"hht\"\nmax_step_cuts = 1000",
+        "dynamic.max_step_cuts",
+    ),
+    (
+        "duration 1e9",
+        "benchmarks/scr-heave",
+        "duration = 100.0",
+        "duration = 1e9",
+        "dynamic.duration",
+    ),
+    (
+        "element length 1e-5",
+        "benchmarks/scr-heave",
+        "element_length = 4.0",
+        "element_length = 1e-5",
+        "mesh",
+    ),
+    (
+        "records of gigabytes",
+        "benchmarks/scr-heave",
+        "duration = 100.0",
+        "duration = 100000.0\noutput_interval = 0.05",
+        "dynamic.output_interval",
+    ),
+    (
+        "current 1e300",
+        "benchmarks/scr-current",
+        "[[0.0, 0.5]]",
+        "[[0.0, 1e300]]",
+        "current.profile[0][1]",
+    ),
+    (
+        "current entry of three numbers",
+        "benchmarks/scr-current",
+        "[[0.0, 0.5]]",
+        "[[0.0, 0.5, 7.0]]",
+        "current.profile[0]",
+    ),
+    (
+        "k_max 1e17",
+        "scr1000/static-rq",
+        "k_max = 200.0",
+        "k_max = 1e17",
+        "seabed.k_max",
+    ),
+    (
+        "two gauges of one name",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[[gauge]]\nname = \"a\"\narc = 1000.0\n[[gauge]]\nname = \"a\"\narc = 1100.0\n\n[dynamic]",
+        "gauge[1].name",
+    ),
+    (
+        "negative time step",
+        "benchmarks/scr-heave",
+        "time_step = 0.05",
+        "time_step = -0.05",
+        "dynamic.time_step",
+    ),
+    (
+        "soil test step 1e-300",
+        "soil/figure5",
+        "step = 2.0",
+        "step = 1e-300",
+        "test.step",
+    ),
+    (
+        "soil test count 1e9",
+        "soil/figure5",
+        "count = 100\n",
+        "count = 1000000000\n",
+        "test.cycles[2].count",
+    ),
+    (
+        "soil test waypoint 1e300",
+        "soil/figure5",
+        "waypoints = [0.0, 612.25]",
+        "waypoints = [0.0, 1e300]",
+        "test.waypoints[1]",
+    ),
+];
+
+#[test]
+fn every_bad_input_is_refused_naming_its_file_and_key() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut failures = Vec::new();
+    for (i, (name, case, from, to, key)) in ROWS.iter().enumerate() {
+        let src = root().join(format!("cases/{case}.toml"));
+        let text = std::fs::read_to_string(&src).expect("case");
+        assert!(text.contains(from), "row {name}: `{from}` is not in {case}");
+        let path = src.with_file_name(format!("bad-input-{i}.toml"));
+        let path = dir.join(path.file_name().expect("name"));
+        std::fs::write(&path, text.replacen(from, to, 1)).expect("write");
+        // Files the case names (RAO tables) are not needed: these cases name none.
+        match commands::check(&path) {
+            Ok(out) => failures.push(format!("{name}: accepted:\n{out}")),
+            Err(e) => {
+                let msg = e.to_string();
+                let file = path.display().to_string();
+                if !msg.contains(&file) || !msg.contains(&format!("`{key}`")) {
+                    failures.push(format!(
+                        "{name}: the message does not name {file} and `{key}`: {msg}"
+                    ));
+                }
+                assert!(
+                    msg.len() < 400,
+                    "{name}: a message of {} characters: {msg}",
+                    msg.len()
+                );
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A motion series with a cell that is not a number is refused with the file, line and column.
+#[test]
+fn a_motion_series_cell_that_is_not_a_number_is_refused() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_series");
+    std::fs::create_dir_all(&dir).expect("dir");
+    std::fs::write(dir.join("m.csv"), "t,dx,dz\n0.0,0.0,0.0\n1.0,abc,0.1,0.2\n").expect("csv");
+    let text =
+        std::fs::read_to_string(root().join("cases/benchmarks/scr-heave.toml")).expect("case");
+    let from = "[motion.harmonic]             # z = 2·r(t)·sin(2πt/10), quintic ramp over the first 10 s\nheave = 2.0                   # m\nperiod = 10.0                 # s\nramp = 10.0                   # s";
+    assert!(text.contains(from), "the harmonic table moved");
+    let case = dir.join("series.toml");
+    std::fs::write(
+        &case,
+        text.replace(from, "[motion.series]\nfile = \"m.csv\""),
+    )
+    .expect("case");
+    let e = commands::check(&case).expect_err("refused").to_string();
+    assert!(
+        e.contains("motion.series.file") && e.contains("line 3, column 2") && e.contains("abc"),
+        "{e}"
+    );
+}
+
+/// A well-formed case passes `catena check`, which says what would run.
+#[test]
+fn check_describes_a_good_case() {
+    let out = commands::check(&root().join("cases/benchmarks/scr-heave.toml")).expect("good");
+    assert!(
+        out.contains("2000 steps") && out.contains("400 elements"),
+        "{out}"
+    );
+    assert!(
+        out.contains("linear seabed") && out.contains("harmonic top motion"),
+        "{out}"
+    );
+    assert!(
+        !out.contains("waves"),
+        "an absent effect is not built: {out}"
+    );
+}
