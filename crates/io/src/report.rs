@@ -312,7 +312,7 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
         }
     }
     if let Some(s) = &r.stop {
-        let _ = writeln!(t, "  STOPPED EARLY at t = {} s: {s}", r.t_reached);
+        let _ = writeln!(t, "  STOPPED EARLY at t = {:.6} s: {s}", r.t_reached);
     }
     t
 }

@@ -410,8 +410,9 @@ impl RandolphQuiggin {
         }
         let pu0 = self.pu(z0).0;
         let unit = 1.0 / self.k;
-        let max_step = (0.25 * unit).max(1e-5 * self.p.diameter);
-        let mut step = (1e-3 * unit).min(max_step);
+        // Never below 10⁻⁵·D nor 10⁻⁶·z0: the scan ends within about 10⁶ steps whatever the parameters.
+        let max_step = (0.25 * unit).max(1e-5 * self.p.diameter).max(1e-6 * z0);
+        let mut step = (1e-3 * unit).clamp(1e-3 * max_step, max_step);
         let mut hi = z0; // P5(hi) > 0
         loop {
             if hi <= 0.0 {

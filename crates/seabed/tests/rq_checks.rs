@@ -404,6 +404,22 @@ fn suction_onset_ends_for_any_kmax() {
             assert!(zc > 0.0 && zc <= z0, "k_max {k_max}: {zc}");
         }
     }
+    // … and whatever the diameter (the fuzz target found a hang with D = 1e-300 m: D/Kmax underflowed
+    // to zero and so did the scan step); the scan step is also never below 1e-6·z0.
+    for diameter in [1e-300, 1e-12, 1e-6] {
+        let l = law(RqParams {
+            diameter,
+            ..RqParams::table1()
+        });
+        let z0 = 0.5 * diameter;
+        let p0 = l.p_ip(z0).0;
+        let t = std::time::Instant::now();
+        let zc = l.suction_onset(z0, p0);
+        assert!(t.elapsed().as_secs_f64() < 1.0, "D {diameter}");
+        if let Some(zc) = zc {
+            assert!(zc > 0.0 && zc <= z0, "D {diameter}: {zc}");
+        }
+    }
     // Against a plain bisection of P5 on the same bracket (Table 1, an uplift from 5 cm).
     let l = law(RqParams::table1());
     let (z0, p0) = (0.05, l.p_ip(0.05).0);

@@ -119,6 +119,10 @@ pub fn text_hash(text: &str) -> String {
 /// `NaN`, or ask for unbounded work; they are refused before anything runs.
 pub const MAX_MAGNITUDE: f64 = 1e12;
 
+/// The smallest magnitude a non-zero number may have: 10⁻¹² (a diameter of 1e-300 m made the
+/// seabed's length scale underflow).
+pub const MIN_MAGNITUDE: f64 = 1e-12;
+
 /// Checks every number of a scene document, before anything else: finite (`nan` and `inf` are
 /// refused) and within ±[`MAX_MAGNITUDE`]. Integers named `seed` are exempt (any 64-bit seed).
 /// The error names the key path (`motion.harmonic.heave`, `current.profile[1][0]`).
@@ -129,12 +133,16 @@ pub fn check_numbers(file: &str, doc: &toml::Table) -> Result<(), SceneError> {
                 file,
                 path,
                 format!(
-                    "a finite number of magnitude at most {MAX_MAGNITUDE:e} in SI units (got {x})"
+                    "a finite number, 0 or of magnitude between {MIN_MAGNITUDE:e} and {MAX_MAGNITUDE:e} in SI units (got {x})"
                 ),
             ))
         };
         match v {
-            toml::Value::Float(x) if !x.is_finite() || x.abs() > MAX_MAGNITUDE => {
+            toml::Value::Float(x)
+                if !x.is_finite()
+                    || x.abs() > MAX_MAGNITUDE
+                    || (*x != 0.0 && x.abs() < MIN_MAGNITUDE) =>
+            {
                 return bad(format!("{x:e}"));
             }
             toml::Value::Integer(i)

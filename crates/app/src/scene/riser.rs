@@ -664,6 +664,13 @@ impl RiserScene {
         let l = &raw.line;
         positive(file, "line.length", l.length, "a length in m")?;
         positive(file, "line.od", l.od, "a diameter in m")?;
+        if !(0.005..=5.0).contains(&l.od) {
+            return Err(invalid(
+                file,
+                "line.od",
+                format!("an outer diameter between 0.005 and 5 m (got {} m)", l.od),
+            ));
+        }
         let pi = std::f64::consts::PI;
         let (a_steel, a_inner) = match l.wall {
             Some(t) => {
