@@ -71,20 +71,11 @@ pub enum CatenaryError {
     Invalid(&'static str),
 }
 
-fn bisect(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let flo = f(lo);
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if (f(m) > 0.0) == (flo > 0.0) {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
-    0.5 * (lo + hi)
+/// The sign change of `f` in `[lo, hi]` (the shared bisection, `catena_seabed::roots`).
+fn bisect(lo: f64, hi: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let flo = f(lo) > 0.0;
+    let (a, b) = catena_seabed::roots::bisect(lo, hi, |m| (f(m) > 0.0) != flo);
+    0.5 * (a + b)
 }
 
 impl TouchdownCatenary {

@@ -402,18 +402,10 @@ pub fn static_embedment(model: &LineModel, w: f64) -> Option<f64> {
             return None;
         }
     }
-    let (mut lo, mut hi) = (0.0, hi);
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if f(m) < 0.0 {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
+    let (lo, hi) = catena_seabed::roots::bisect(0.0, hi, |m| {
+        let v = f(m);
+        v >= 0.0 || v.is_nan()
+    });
     Some(0.5 * (lo + hi))
 }
 

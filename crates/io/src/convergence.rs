@@ -44,7 +44,16 @@ pub fn csv(st: &Study) -> String {
         for (k, v) in r.values.iter().enumerate() {
             let (em, ed) = error_of(st, k, r);
             let e = if ser == Series::Mesh { em } else { ed };
-            let _ = write!(s, ",{v},{e}");
+            // An unknown value or error (a failed run, a series of one factor) is an empty cell,
+            // never `NaN`.
+            let cell = |x: f64| {
+                if x.is_finite() {
+                    x.to_string()
+                } else {
+                    String::new()
+                }
+            };
+            let _ = write!(s, ",{},{}", cell(*v), cell(e));
         }
         s.push('\n');
     }

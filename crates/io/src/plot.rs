@@ -38,7 +38,36 @@ pub fn mode_colour(m: Mode) -> RGBColor {
 pub(crate) fn plot_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> AppError + '_ {
     move |e| AppError::Plot {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        message: plain_message(&e.to_string()),
+    }
+}
+
+/// The plotting backend's error in words: its text is Rust debug output (`ImageError(IoError(Os {
+/// … message: "No such file or directory" }))`); the system's message is taken out of it, and an
+/// unknown image format becomes what to do.
+fn plain_message(raw: &str) -> String {
+    if let Some(i) = raw.find("message: \"") {
+        let rest = &raw[i + 10..];
+        let text = rest.split('"').next().unwrap_or(rest);
+        return format!("cannot write the image: {text}");
+    }
+    if raw.contains("Unsupported") {
+        return "cannot write the image: the file name must end in .png".into();
+    }
+    raw.to_string()
+}
+
+#[cfg(test)]
+mod message_tests {
+    #[test]
+    fn backend_errors_are_put_in_words() {
+        let io = r#"backend error: Drawing backend error: ImageError(IoError(Os { code: 2, kind: NotFound, message: "No such file or directory" }))"#;
+        assert_eq!(
+            super::plain_message(io),
+            "cannot write the image: No such file or directory"
+        );
+        let fmt = "backend error: Drawing backend error: ImageError(Unsupported(UnsupportedError { format: Unknown, kind: Format(Unknown) }))";
+        assert!(super::plain_message(fmt).ends_with("must end in .png"));
     }
 }
 

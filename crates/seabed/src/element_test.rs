@@ -167,23 +167,16 @@ pub fn solve_load(
         let zb = za + dir * step;
         let tb = seabed.evaluate(h, zb, 0.0, 0.0);
         if dir * (tb.total() - target) >= 0.0 {
-            // Bisect [za, zb]: the target lies between F(za) and F(zb).
-            let (mut lo, mut hi) = (za, zb);
-            let mut best = (zb, tb);
-            for _ in 0..200 {
-                let m = 0.5 * (lo + hi);
-                if m == lo || m == hi {
-                    break;
-                }
-                let tm = seabed.evaluate(h, m, 0.0, 0.0);
-                if dir * (tm.total() - target) >= 0.0 {
-                    hi = m;
-                    best = (m, tm);
-                } else {
-                    lo = m;
-                }
-            }
-            return Ok(best);
+            // Bisect [za, zb]: the target lies between F(za) and F(zb). The end reached is the
+            // bracket's far end (the first side at or beyond the target), as `roots::bisect` keeps
+            // it oriented from za.
+            let reached = |z: f64| dir * (seabed.evaluate(h, z, 0.0, 0.0).total() - target) >= 0.0;
+            let z = if dir > 0.0 {
+                crate::roots::bisect(za, zb, reached).1
+            } else {
+                crate::roots::bisect(zb, za, |z| !reached(z)).0
+            };
+            return Ok((z, seabed.evaluate(h, z, 0.0, 0.0)));
         }
         if zb > z_deep || zb < z_clear {
             return Err((zb, tb.total()));
@@ -220,10 +213,15 @@ pub fn run(seabed: &Seabed, legs: &[Leg]) -> Result<TestResult, TestError> {
     let mut rows = vec![row(0, 0, 0.0, &first)];
     let mut leg_ends = Vec::with_capacity(legs.len());
     let mut force = first.total();
+    let mut previous: Option<(Control, f64)> = None;
     for (li, leg) in legs.iter().enumerate() {
-        let start = match leg.control {
-            Control::Displacement => h.z_prev(),
-            Control::Load => force,
+        // A leg starts where the previous leg of the same control ended (its waypoint), not at the
+        // force a load-controlled solve reached to its tolerance: otherwise a leg whose length is
+        // a whole number of steps gets one increment more.
+        let start = match (leg.control, previous) {
+            (c, Some((pc, end))) if c == pc => end,
+            (Control::Displacement, _) => h.z_prev(),
+            (Control::Load, _) => force,
         };
         let end = match leg.target {
             Target::To(t) => t,
@@ -255,6 +253,7 @@ pub fn run(seabed: &Seabed, legs: &[Leg]) -> Result<TestResult, TestError> {
             rows.push(row(rows.len(), li + 1, z, &trial));
         }
         leg_ends.push(rows.len() - 1);
+        previous = Some((leg.control, end));
     }
     Ok(TestResult { rows, leg_ends })
 }

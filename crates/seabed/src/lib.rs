@@ -23,12 +23,14 @@
 //! - [`buoyancy`]: the soil buoyancy force of the paper's eq. 15;
 //! - [`law`]: [`law::Seabed`], the law a scene chose plus optional buoyancy, behind one interface,
 //!   and [`law::SeabedHistory`], the per-node history of whichever law it is;
-//! - [`element_test`]: the soil element test driver (displacement and load control).
+//! - [`element_test`]: the soil element test driver (displacement and load control);
+//! - [`roots`]: the bisection and safeguarded Newton root finder every scan shares.
 
 pub mod buoyancy;
 pub mod element_test;
 pub mod law;
 pub mod linear;
+pub mod roots;
 pub mod rq;
 
 pub use buoyancy::SoilBuoyancy;

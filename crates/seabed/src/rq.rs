@@ -672,36 +672,4 @@ impl RandolphQuiggin {
     }
 }
 
-/// The root of `f` in `[lo, hi]` given `f(lo) ≤ 0 < f(hi)`, to machine precision: the smallest
-/// `x` found with `f(x) > 0` whose lower neighbour in the bracket has `f ≤ 0`. `f` returns the value
-/// and its derivative. Newton's step is taken when it stays inside the bracket and at least halves
-/// it, else bisection; a converged iterate is nudged by one unit in the last place towards the other
-/// end, so the bracket closes on two neighbouring numbers in a few evaluations (about 6 against
-/// bisection's 50). Every iteration shrinks the bracket, so it always ends.
-pub fn bracketed_root(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64) -> f64 {
-    let (mut a, mut b) = (lo, hi);
-    let mut x = 0.5 * (a + b);
-    for _ in 0..400 {
-        if x <= a || x >= b {
-            break;
-        }
-        let (fx, dfx) = f(x);
-        if fx <= 0.0 {
-            a = x;
-        } else {
-            b = x;
-        }
-        let newton = x - fx / dfx;
-        x = if newton > a && newton < b && (newton - x).abs() <= 0.5 * (b - a) {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-        if x <= a {
-            x = a.next_up();
-        } else if x >= b {
-            x = b.next_down();
-        }
-    }
-    b
-}
+pub use crate::roots::bracketed_root;

@@ -439,3 +439,23 @@ fn suction_onset_ends_for_any_kmax() {
     let below = l.evaluate(&h, zc * (1.0 - 1e-9)).p;
     assert!(above > below, "{above} {below}");
 }
+
+/// Load control (issue 14): a leg starts at the previous leg's target, not at the force the
+/// previous solve reached, so a leg of a whole number of steps has exactly that many increments
+/// (Figure 5's 365 → 525 N/m at 2 N/m: 80, not 81).
+#[test]
+fn load_legs_start_at_their_waypoint() {
+    let seabed = Seabed {
+        law: Law::RandolphQuiggin(law(RqParams::table2())),
+        buoyancy: None,
+    };
+    let leg = |to: f64| Leg {
+        control: Control::Load,
+        target: Target::To(to),
+        step: 2.0,
+    };
+    let legs = [leg(612.25), leg(365.0), leg(525.0), leg(365.0), leg(525.0)];
+    let r = element_test::run(&seabed, &legs).expect("runs");
+    let counts: Vec<usize> = r.leg_ends.windows(2).map(|w| w[1] - w[0]).collect();
+    assert_eq!(counts, vec![124, 80, 80, 80], "increments per leg");
+}
