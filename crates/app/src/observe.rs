@@ -174,10 +174,15 @@ pub struct Envelopes {
     pub penetration_min: Vec<f64>,
     /// Steps taken into the envelopes.
     pub samples: u64,
+    /// The touchdown point's least and greatest arc length, m (`catena_fe::statics::touchdown_arc`;
+    /// infinite while no step has a touchdown point).
+    pub touchdown: (f64, f64),
 }
 
 #[derive(Serialize, Deserialize)]
 struct EnvelopesSaved {
+    #[serde(default)]
+    touchdown: Option<(f64, f64)>,
     moment_min: Vec<Option<f64>>,
     moment_max: Vec<Option<f64>>,
     tension_min: Vec<Option<f64>>,
@@ -198,6 +203,7 @@ impl Envelopes {
             penetration_max: vec![f64::NEG_INFINITY; n],
             penetration_min: vec![f64::INFINITY; n],
             samples: 0,
+            touchdown: (f64::INFINITY, f64::NEG_INFINITY),
         }
     }
 
@@ -236,14 +242,20 @@ impl Observer for Envelopes {
     fn name(&self) -> &'static str {
         "envelopes"
     }
-    fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+    fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         if s.envelope {
             self.update(s.results);
+            if let Some(a) =
+                catena_fe::statics::touchdown_arc(&ctx.model.line.arc, &s.results.penetration)
+            {
+                self.touchdown = (self.touchdown.0.min(a), self.touchdown.1.max(a));
+            }
         }
         Ok(Control::Continue)
     }
     fn save(&mut self) -> Result<Value, AppError> {
         Ok(serde_json::to_value(EnvelopesSaved {
+            touchdown: self.touchdown.0.is_finite().then_some(self.touchdown),
             moment_min: enc(&self.moment_min),
             moment_max: enc(&self.moment_max),
             tension_min: enc(&self.tension_min),
@@ -277,6 +289,7 @@ impl Observer for Envelopes {
         self.penetration_max = dec(&s.penetration_max, ninf);
         self.penetration_min = dec(&s.penetration_min, inf);
         self.samples = s.samples;
+        self.touchdown = s.touchdown.unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
         Ok(())
     }
 }

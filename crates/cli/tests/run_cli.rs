@@ -76,6 +76,41 @@ fn run_writes_dynamic_layout() {
         let v = js["dynamic"]["envelopes"][key].as_array().expect(key);
         assert_eq!(v.len(), 401, "{key}");
     }
+    // The touchdown track: every record equals the interpolation of its own penetration row, and the
+    // summary's range (from every step) contains the recorded one.
+    let tdp = f
+        .dataset("dynamic/touchdown_arc")
+        .expect("touchdown_arc")
+        .read_raw::<f64>()
+        .expect("tdp");
+    assert_eq!(tdp.len(), 51);
+    let pen = f
+        .dataset("dynamic/penetration")
+        .expect("pen")
+        .read_2d::<f64>()
+        .expect("pen");
+    let arc: Vec<f64> = (0..401).map(|i| 4.0 * i as f64).collect();
+    for (k, row) in pen.rows().into_iter().enumerate() {
+        let row: Vec<f64> = row.to_vec();
+        let want = catena_fe::statics::touchdown_arc(&arc, &row).expect("touches down");
+        assert!(
+            (tdp[k] - want).abs() < 1e-9,
+            "record {k}: {} vs {want}",
+            tdp[k]
+        );
+        assert!((1000.0..1300.0).contains(&tdp[k]), "record {k}: {}", tdp[k]);
+    }
+    let lo = js["dynamic"]["touchdown_arc_min"].as_f64().expect("min");
+    let hi = js["dynamic"]["touchdown_arc_max"].as_f64().expect("max");
+    let (rlo, rhi) = tdp
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        });
+    assert!(
+        lo <= rlo && hi >= rhi && hi - lo > 0.5,
+        "{lo}..{hi} vs {rlo}..{rhi}"
+    );
     for png in ["static.png", "dynamic.png"] {
         assert!(std::fs::metadata(out.join(png)).expect(png).len() > 10_000);
     }

@@ -548,6 +548,24 @@ pub struct StaticSummary {
     pub top_angle_from_vertical: f64,
 }
 
+/// The touchdown point: the first node `i` from the top whose invert penetrates (`z_i > 0`) after
+/// one that does not (`z_{i−1} ≤ 0`), and the fraction `f` of element `i−1..i` at which the
+/// penetration, interpolated linearly, is zero (so the touchdown arc length is
+/// `s_{i−1} + f·(s_i − s_{i−1})`). `None` if no node penetrates after a clear one.
+pub fn touchdown_point(penetration: &[f64]) -> Option<(usize, f64)> {
+    (1..penetration.len())
+        .find(|&i| penetration[i] > 0.0 && penetration[i - 1] <= 0.0)
+        .map(|i| {
+            let (a, b) = (penetration[i - 1], penetration[i]);
+            (i, -a / (b - a))
+        })
+}
+
+/// The touchdown point's arc length (see [`touchdown_point`]), m.
+pub fn touchdown_arc(arc: &[f64], penetration: &[f64]) -> Option<f64> {
+    touchdown_point(penetration).map(|(i, f)| arc[i - 1] + f * (arc[i] - arc[i - 1]))
+}
+
 #[allow(clippy::needless_range_loop)]
 /// Summarises nodal results at the arc lengths `arc` (`reactions` = the global residual at the top
 /// node's and at the anchor node's x and z).
@@ -556,13 +574,9 @@ pub fn summarise(arc: &[f64], r: &LineResults, reactions: [(f64, f64); 2]) -> St
     let n = arc.len();
     let mut touchdown_arc = None;
     let mut touchdown_moment = None;
-    for i in 1..n {
-        if r.penetration[i] > 0.0 && r.penetration[i - 1] <= 0.0 {
-            let f = -r.penetration[i - 1] / (r.penetration[i] - r.penetration[i - 1]);
-            touchdown_arc = Some(arc[i - 1] + f * (arc[i] - arc[i - 1]));
-            touchdown_moment = Some(r.moment[i - 1] + f * (r.moment[i] - r.moment[i - 1]));
-            break;
-        }
+    if let Some((i, f)) = touchdown_point(&r.penetration) {
+        touchdown_arc = Some(arc[i - 1] + f * (arc[i] - arc[i - 1]));
+        touchdown_moment = Some(r.moment[i - 1] + f * (r.moment[i] - r.moment[i - 1]));
     }
     let mut sag = (0.0, 0.0);
     let mut abs = (0.0f64, 0.0);

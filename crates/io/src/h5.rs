@@ -121,11 +121,15 @@ const SEA: [(&str, &str); 3] = [
     ("top_axial_motion", "m"),
 ];
 
-const SERIES: [(&str, &str); 4] = [
+const SERIES: [(&str, &str); 5] = [
     ("time", "s"),
     ("top_x", "m"),
     ("top_z", "m"),
     ("top_tension", "N"),
+    // The touchdown point's arc length from the top, interpolated where the invert's penetration is
+    // zero (`catena_fe::statics::touchdown_arc`); the anchor's arc length when no node touches down
+    // after a clear one.
+    ("touchdown_arc", "m"),
 ];
 const FIELDS: [(&str, &str); 6] = [
     ("x", "m"),
@@ -299,7 +303,9 @@ impl Recorder {
         sea: Option<[f64; 3]>,
     ) -> Result<(), AppError> {
         let mut k = 0;
-        for v in [t, r.x[0], r.z[0], r.tension[0]] {
+        let tdp =
+            catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
+        for v in [t, r.x[0], r.z[0], r.tension[0], tdp] {
             self.series[k].1.push(v);
             k += 1;
         }

@@ -190,6 +190,9 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         "top_tension_min": num(tmin),
         "top_tension_max": num(tmax),
         "top_tension_range": num(tmax - tmin),
+        "touchdown_arc_min": num(r.envelopes.touchdown.0),
+        "touchdown_arc_max": num(r.envelopes.touchdown.1),
+        "touchdown_arc_range": num(r.envelopes.touchdown.1 - r.envelopes.touchdown.0),
         "gauges": gauges,
         "envelopes": {
             "arc": r.model.line.arc,
@@ -269,6 +272,14 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             "n/a".into()
         }
     );
+    let (td0, td1) = r.envelopes.touchdown;
+    if td0.is_finite() {
+        let _ = writeln!(
+            t,
+            "  touchdown point       {td0:>10.2} to {td1:.2} m arc length (range {:.2} m)",
+            td1 - td0
+        );
+    }
     for (g, tr) in r.spec.gauges.iter().zip(&r.gauges.traces) {
         let f = |v: Option<f64>| kn(v.unwrap_or(f64::NAN), 1e-3);
         let _ = writeln!(
