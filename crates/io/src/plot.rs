@@ -248,6 +248,108 @@ enum Marks {
     Points,
 }
 
+/// A labelled line for [`legend_panel`].
+struct Labelled<'a> {
+    points: Vec<(f64, f64)>,
+    colour: RGBColor,
+    label: &'a str,
+}
+
+/// Draws one panel of labelled lines with a legend, optional vertical markers `(x, label, colour)`
+/// drawn dashed across the panel, and an optional x range (else the data's).
+fn legend_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    (xlabel, ylabel): (&str, &str),
+    series: &[Labelled<'_>],
+    markers: &[(f64, &str, RGBColor)],
+    x_range: Option<(f64, f64)>,
+) -> Result<(), String> {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for s in series {
+        for &(x, y) in &s.points {
+            let inside = x_range.is_none_or(|(a, b)| x >= a && x <= b);
+            if x.is_finite() && y.is_finite() && inside {
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let (x0, x1) = match x_range {
+        Some(r) => r,
+        None => padded(x0, x1),
+    };
+    let (y0, y1) = padded(y0, y1);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for s in series {
+        let c = s.colour;
+        chart
+            .draw_series(LineSeries::new(
+                s.points
+                    .iter()
+                    .copied()
+                    .filter(|(x, _)| x_range.is_none_or(|(a, b)| *x >= a && *x <= b)),
+                c.stroke_width(2),
+            ))
+            .map_err(|e| e.to_string())?
+            .label(s.label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+    }
+    for &(x, label, c) in markers {
+        if !(x.is_finite() && x >= x0 && x <= x1) {
+            continue;
+        }
+        let n = 40;
+        let dash = (0..n).filter(|k| k % 2 == 0).map(move |k| {
+            let a = y0 + (y1 - y0) * k as f64 / n as f64;
+            let b = y0 + (y1 - y0) * (k + 1) as f64 / n as f64;
+            PathElement::new(vec![(x, a), (x, b)], c.stroke_width(2))
+        });
+        chart
+            .draw_series(dash)
+            .map_err(|e| e.to_string())?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 8, y), (x + 12, y), (x + 20, y)],
+                    c.stroke_width(2),
+                )
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 14))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
 /// Draws one panel: `series` of (x, y) lines with a caption and axis labels.
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -388,14 +490,14 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
     let perr = plot_err::<String>(path);
-    let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1800, 1500)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let title = format!(
-        "{} — dynamics (envelopes from t = {} s)",
+        "{} — dynamics, envelopes over t ≥ {} s",
         r.statics.scene.title, r.spec.envelope_start
     );
-    let root = root.titled(&title, ("sans-serif", 24)).map_err(&err)?;
-    let areas = root.split_evenly((2, 2));
+    let root = root.titled(&title, ("sans-serif", 22)).map_err(&err)?;
+    let areas = root.split_evenly((3, 2));
     let arc = &r.model.line.arc;
     let e = &r.envelopes;
     let line = |v: &[f64], s: f64| -> Vec<(f64, f64)> {
@@ -408,35 +510,105 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     let red = RGBColor(180, 30, 30);
     let blue = RGBColor(20, 90, 200);
     let grey = RGBColor(120, 120, 120);
-    panel(
+    let green = RGBColor(20, 140, 60);
+    let lab = |points, colour, label| Labelled {
+        points,
+        colour,
+        label,
+    };
+    // The touchdown point: static, and the least and greatest arc length it reached.
+    let tdp_static = r.statics.summary.touchdown_arc.unwrap_or(f64::NAN);
+    let (td0, td1) = e.touchdown;
+    let mut markers = vec![(tdp_static, "static touchdown point", green)];
+    if td0.is_finite() {
+        markers.push((
+            td0,
+            "touchdown point nearest the top",
+            RGBColor(230, 140, 20),
+        ));
+        markers.push((
+            td1,
+            "touchdown point nearest the anchor",
+            RGBColor(150, 80, 10),
+        ));
+    }
+    // The zoom: the zone the touchdown point visits, with a margin of half its width or 20 m.
+    let zoom = if td0.is_finite() {
+        let m = (0.5 * (td1 - td0)).max(20.0);
+        Some((td0 - m, td1 + m))
+    } else if tdp_static.is_finite() {
+        Some((tdp_static - 30.0, tdp_static + 30.0))
+    } else {
+        None
+    };
+    let moments = || {
+        vec![
+            lab(line(&e.moment_max, 1e-3), blue, "maximum"),
+            lab(line(&e.moment_min, 1e-3), red, "minimum"),
+            lab(line(&r.statics.results.moment, 1e-3), grey, "static"),
+        ]
+    };
+    let xs = "arc length from the top (m)";
+    legend_panel(
         &areas[0],
-        "bending moment envelope (min, max, static)",
-        "arc length from the top (m)",
-        "M (kN·m)",
-        &[
-            (line(&e.moment_min, 1e-3), red),
-            (line(&e.moment_max, 1e-3), blue),
-            (line(&r.statics.results.moment, 1e-3), grey),
-        ],
+        "bending moment envelope",
+        (xs, "M (kN·m), negative = sag"),
+        &moments(),
+        &markers[..1],
+        None,
     )
     .map_err(&perr)?;
-    panel(
+    legend_panel(
         &areas[1],
-        "bending moment range",
-        "arc length from the top (m)",
-        "ΔM (kN·m)",
-        &[(line(&e.moment_range(), 1e-3), red)],
+        "touchdown zone: bending moment envelope (zoomed)",
+        (xs, "M (kN·m), negative = sag"),
+        &moments(),
+        &markers,
+        zoom,
     )
     .map_err(&perr)?;
-    panel(
+    legend_panel(
         &areas[2],
-        "effective tension envelope (min, max)",
-        "arc length from the top (m)",
-        "T (kN)",
+        "bending moment range (max − min)",
+        (xs, "ΔM (kN·m)"),
+        &[lab(line(&e.moment_range(), 1e-3), red, "range")],
+        &markers[..1],
+        None,
+    )
+    .map_err(&perr)?;
+    // Clear of the seabed by more than two diameters is drawn at −2D, so that the penetration
+    // (millimetres to decimetres) stays readable.
+    let od = r.model.line.node_od[r.model.line.nodes() - 1];
+    let pen = |v: &[f64]| -> Vec<(f64, f64)> {
+        line(v, 1.0)
+            .into_iter()
+            .map(|(a, y)| (a, y.max(-2.0 * od)))
+            .collect()
+    };
+    legend_panel(
+        &areas[3],
+        "touchdown zone: penetration of the invert (zoomed; clear by more than 2D drawn at −2D)",
+        (xs, "penetration (m), positive down"),
         &[
-            (line(&e.tension_min, 1e-3), red),
-            (line(&e.tension_max, 1e-3), blue),
+            lab(pen(&e.penetration_max), blue, "maximum"),
+            lab(pen(&e.penetration_min), red, "minimum"),
+            lab(pen(&r.statics.results.penetration), grey, "static"),
         ],
+        &markers,
+        zoom,
+    )
+    .map_err(&perr)?;
+    legend_panel(
+        &areas[4],
+        "effective tension envelope",
+        (xs, "T_e (kN)"),
+        &[
+            lab(line(&e.tension_max, 1e-3), blue, "maximum"),
+            lab(line(&e.tension_min, 1e-3), red, "minimum"),
+            lab(line(&r.statics.results.tension, 1e-3), grey, "static"),
+        ],
+        &markers[..1],
+        None,
     )
     .map_err(&perr)?;
     let th: Vec<(f64, f64)> = r
@@ -446,12 +618,13 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         .zip(&r.top.top_tension)
         .map(|(t, v)| (*t, v * 1e-3))
         .collect();
-    panel(
-        &areas[3],
+    legend_panel(
+        &areas[5],
         "top tension",
-        "time (s)",
-        "T_top (kN)",
-        &[(th, blue)],
+        ("time (s)", "T_top (kN)"),
+        &[lab(th, blue, "top effective tension")],
+        &[(r.spec.envelope_start, "envelopes start", grey)],
+        None,
     )
     .map_err(&perr)?;
     root.present().map_err(&err)?;
