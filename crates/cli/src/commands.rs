@@ -587,7 +587,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     write_json(&json_path, &js)?;
     let png = out.join("sweep.png");
     let title = format!(
-        "{} — sweep of {}",
+        "{} — base of a sweep of {}",
         match &plan.base {
             sweep::Base::Study(s) => s.base.title.clone(),
             sweep::Base::Scene(s) => s.title.clone(),

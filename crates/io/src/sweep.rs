@@ -32,6 +32,21 @@ fn short(v: f64) -> String {
     }
 }
 
+/// A key path with its SI unit, for an axis (the keys the paper's figures sweep; others as they are).
+pub fn key_label(key: &str) -> String {
+    let unit = match key.rsplit('.').next().unwrap_or(key) {
+        "stiffness" => " (N/m/m²)",
+        "su0" => " (Pa)",
+        "su_gradient" => " (Pa/m)",
+        "k_max" | "f_suc" | "lambda_suc" | "lambda_rep" | "a" | "b" => " (—)",
+        "time_step" | "duration" => " (s)",
+        "element_length" | "od" | "wall" | "hs" => " (m)",
+        "tp" => " (s)",
+        _ => "",
+    };
+    format!("{key}{unit}")
+}
+
 /// Writes `sweep.png` (nothing to draw when the first parameter is not numeric or no point has a
 /// life).
 pub fn figure(
@@ -148,7 +163,7 @@ pub fn figure(
                 let mut chart = $chart;
                 chart
                     .configure_mesh()
-                    .x_desc(key.as_str())
+                    .x_desc(key_label(key))
                     .y_desc(ydesc)
                     .x_label_formatter(&|v| short(*v))
                     .y_label_formatter(&|v| short(*v))
