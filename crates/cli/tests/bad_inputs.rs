@@ -278,3 +278,28 @@ fn check_describes_a_good_case() {
         "an absent effect is not built: {out}"
     );
 }
+
+/// The range checks refuse nonsense, not soft seabeds: the 1000 m SCR on the softest seabed of the
+/// Figure 11 sweep (su0 = 0, 650 Pa/m) rests 0.6 m deep, and its default anchor (at the static
+/// embedment, 2.6 D below the mudline) must still be accepted.
+#[test]
+fn a_very_soft_seabed_is_not_refused() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("soft_seabed");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let src = root().join("cases/scr1000/fatigue/scr1000-rq-fsuc0.2.toml");
+    let text = std::fs::read_to_string(&src).expect("case");
+    for (from, to) in [
+        ("su0 = 1000.0 ", "su0 = 0.0 "),
+        ("su_gradient = 1300.0 ", "su_gradient = 650.0 "),
+    ] {
+        assert!(text.contains(from), "{from}");
+    }
+    let text = text
+        .replace("su0 = 1000.0 ", "su0 = 0.0 ")
+        .replace("su_gradient = 1300.0 ", "su_gradient = 650.0 ");
+    std::fs::copy(src.with_file_name("semi-rao.csv"), dir.join("semi-rao.csv")).expect("rao");
+    let case = dir.join("soft.toml");
+    std::fs::write(&case, text).expect("case");
+    let out = commands::check(&case).expect("a soft seabed is a valid scene");
+    assert!(out.contains("Randolph–Quiggin seabed"), "{out}");
+}

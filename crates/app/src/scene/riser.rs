@@ -899,13 +899,16 @@ impl RiserScene {
                 ),
             ));
         }
-        if anchor_z < -2.0 * l.od {
+        // A given anchor height: at most 5 diameters below the mudline (catena models no buried
+        // line). The default, at the static embedment, may be deeper on a very soft seabed (0.6 m
+        // for the SCR on su0 = 0, a gradient of 650 Pa/m).
+        if e.anchor_z.is_some() && anchor_z < -5.0 * l.od {
             return Err(invalid(
                 file,
                 "ends.anchor_z",
                 format!(
-                    "an anchor at most 2 diameters ({} m) below the mudline (got {anchor_z} m): catena models no buried line",
-                    2.0 * l.od
+                    "an anchor at most 5 diameters ({:.3} m) below the mudline (got {anchor_z:.3} m): catena models no buried line",
+                    5.0 * l.od
                 ),
             ));
         }
