@@ -288,10 +288,7 @@ fn a_very_soft_seabed_is_not_refused() {
     std::fs::create_dir_all(&dir).expect("dir");
     let src = root().join("cases/scr1000/fatigue/scr1000-rq-fsuc0.2.toml");
     let text = std::fs::read_to_string(&src).expect("case");
-    for (from, to) in [
-        ("su0 = 1000.0 ", "su0 = 0.0 "),
-        ("su_gradient = 1300.0 ", "su_gradient = 650.0 "),
-    ] {
+    for from in ["su0 = 1000.0 ", "su_gradient = 1300.0 "] {
         assert!(text.contains(from), "{from}");
     }
     let text = text
