@@ -29,10 +29,51 @@ fn run_writes_dynamic_layout() {
             .edit(
                 "envelope_start = 50.0",
                 "envelope_start = 0.0\noutput_interval = 0.1",
+            )
+            .edit(
+                "[dynamic]",
+                "[[gauge]]\nname = \"tdz\"\narc = 1190.0\n\n[dynamic]",
             ),
     )
     .expect("case");
     commands::run(&case, &out, &RunCommandOptions::default()).expect("runs");
+    // Self-describing: the arc axis, the conventions, and each gauge's arc length.
+    {
+        let f = hdf5::File::open(out.join("results.h5")).expect("h5");
+        let arc = f
+            .dataset("dynamic/arc")
+            .expect("arc")
+            .read_raw::<f64>()
+            .expect("arc");
+        assert_eq!(arc.len(), 401);
+        assert!((arc[400] - 1600.0).abs() < 1e-9);
+        let g = f.group("dynamic").expect("dynamic");
+        for key in [
+            "units",
+            "arc",
+            "bending_moment",
+            "penetration",
+            "effective_tension",
+        ] {
+            let a = g.attr(key).expect(key);
+            let v: hdf5::types::VarLenUnicode = a.read_scalar().expect(key);
+            assert!(!v.as_str().is_empty(), "{key}");
+        }
+        let sag: hdf5::types::VarLenUnicode = g
+            .attr("bending_moment")
+            .expect("attr")
+            .read_scalar()
+            .expect("sag");
+        assert!(sag.as_str().contains("negative in a sag bend"));
+        let ga: f64 = f
+            .group("dynamic/gauges/tdz")
+            .expect("gauge")
+            .attr("arc")
+            .expect("arc attr")
+            .read_scalar()
+            .expect("arc");
+        assert!((ga - 1190.0).abs() < 1e-9, "{ga}");
+    }
     let f = hdf5::File::open(out.join("results.h5")).expect("h5");
     let t = f
         .dataset("dynamic/time")

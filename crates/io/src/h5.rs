@@ -5,7 +5,9 @@
 //!   `/static/effective_tension` (N), `/static/bending_moment` (N·m, negative = sag),
 //!   `/static/penetration` (m, positive down, ≤ 0 clear), `/static/seabed_force` (N/m), one value per
 //!   node, node 0 at the top; each dataset has a `units` attribute;
-//! - `/dynamic/time`, `/dynamic/top_x`, `/dynamic/top_z`, `/dynamic/top_tension` (n_t);
+//! - `/dynamic/time`, `/dynamic/top_x`, `/dynamic/top_z`, `/dynamic/top_tension`,
+//!   `/dynamic/touchdown_arc` (n_t); `/dynamic/arc` (n_nodes); the conventions as attributes of
+//!   `/dynamic`; each gauge group's arc length as its attribute `arc`;
 //!   `/dynamic/x`, `z`, `effective_tension`, `bending_moment`, `penetration`, `seabed_force` (n_t ×
 //!   n_nodes, f64) and `seabed_mode` (n_t × n_nodes, u8: 0 not in contact, 1 initial penetration,
 //!   2 uplift, 3 repenetration); `/dynamic/gauges/NAME/bending_moment` and `effective_tension` (n_t).
@@ -140,6 +142,24 @@ const FIELDS: [(&str, &str); 6] = [
     ("seabed_force", "N/m"),
 ];
 const FLUSH_EVERY: Duration = Duration::from_secs(1);
+
+/// The sign and axis conventions, written as attributes of `/dynamic`.
+const CONVENTIONS: [(&str, &str); 5] = [
+    ("units", "SI: m, s, N, N*m, N/m, rad"),
+    (
+        "arc",
+        "arc length from the top end (node 0), m; `arc` gives each node's, columns of every field",
+    ),
+    ("bending_moment", "negative in a sag bend"),
+    (
+        "penetration",
+        "of the pipe invert below the mudline, positive down",
+    ),
+    (
+        "effective_tension",
+        "effective tension (wall tension minus the hydrostatic term), N",
+    ),
+];
 
 impl Recorder {
     /// Creates `path` anew with the root attributes and `/static` (flushed at once), and the empty
@@ -448,6 +468,24 @@ impl Observer for Recorder {
             ));
         }
         if !restarted {
+            // Self-description: each gauge's arc length, the arc axis of the fields, the conventions.
+            let path = self.path.clone();
+            let err = h5err(&path);
+            let g = self.file.group("dynamic").map_err(&err)?;
+            for (gauge, arc) in ctx.spec.gauges.iter().zip(&self.gauge_arcs) {
+                let one = g.group(&format!("gauges/{}", gauge.name)).map_err(&err)?;
+                one.new_attr::<f64>()
+                    .shape(())
+                    .create("arc")
+                    .and_then(|a| a.write_scalar(arc))
+                    .map_err(&err)?;
+                attr(&one, "arc_units", "m, from the top").map_err(&err)?;
+            }
+            vector(&g, "arc", &ctx.model.line.arc, "m").map_err(&err)?;
+            for (k, v) in CONVENTIONS {
+                attr(&g, k, v).map_err(&err)?;
+            }
+            drop(g);
             let sea = self.sea_values(ctx, first);
             self.push(first.t, first.results, &ctx.model.line.arc, sea)?;
         }
