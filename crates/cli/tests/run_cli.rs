@@ -152,7 +152,7 @@ fn run_writes_dynamic_layout() {
         lo <= rlo && hi >= rhi && hi - lo > 0.5,
         "{lo}..{hi} vs {rlo}..{rhi}"
     );
-    for png in ["static.png", "dynamic.png"] {
+    for png in ["static.png", "dynamic.png", "gauges.png"] {
         assert!(std::fs::metadata(out.join(png)).expect(png).len() > 10_000);
     }
 }

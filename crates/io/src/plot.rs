@@ -631,10 +631,64 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     Ok(())
 }
 
-/// Bending moment at each gauge against the top height: rising top (pull-up) red, falling
-/// (lay-down) blue, still grey — the manner of the paper's Figures 7 and 8.
-#[allow(clippy::needless_range_loop)]
+/// The gauges' plot. For a pull-up and lay-down (staged top motion): bending moment against the
+/// top height, rising top (pull-up) red, falling (lay-down) blue, still grey — the manner of the
+/// paper's Figures 7 and 8. For any other motion: each gauge's moment time history, with the
+/// envelopes' start marked.
 pub fn gauges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
+    let staged = matches!(r.spec.motion, Some(catena_fe::motion::TopMotion::Staged(_)));
+    if staged {
+        gauges_pull_up(path, r)
+    } else {
+        gauges_history(path, r)
+    }
+}
+
+/// Each gauge's bending moment against time (up to three gauges, one panel each).
+fn gauges_history(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let ng = r.spec.gauges.len().min(3);
+    let root = BitMapBackend::new(path, (1600, 380 * ng.max(1) as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let areas = root.split_evenly((ng.max(1), 1));
+    for (k, g) in r.spec.gauges.iter().enumerate().take(3) {
+        let pts: Vec<(f64, f64)> = r
+            .top
+            .t
+            .iter()
+            .zip(&r.gauges.traces[k].moment)
+            .map(|(t, m)| (*t, m * 1e-3))
+            .collect();
+        let caption = format!(
+            "{}: gauge {} at arc length {:.2} m from the top",
+            r.statics.scene.title, g.name, g.arc
+        );
+        legend_panel(
+            &areas[k],
+            &caption,
+            ("time (s)", "bending moment (kN·m), negative = sag"),
+            &[Labelled {
+                points: pts,
+                colour: RGBColor(20, 90, 200),
+                label: "bending moment",
+            }],
+            &[(
+                r.spec.envelope_start,
+                "envelopes start",
+                RGBColor(120, 120, 120),
+            )],
+            None,
+        )
+        .map_err(&perr)?;
+    }
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
+#[allow(clippy::needless_range_loop)]
+fn gauges_pull_up(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
     let perr = plot_err::<String>(path);
