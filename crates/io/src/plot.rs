@@ -248,6 +248,66 @@ enum Marks {
     Points,
 }
 
+/// The x and y ranges of the finite points (within `x_range` if given, which is then the x range),
+/// padded by 5 %; a unit box if there is none.
+fn data_box(
+    points: impl Iterator<Item = (f64, f64)>,
+    x_range: Option<(f64, f64)>,
+) -> ((f64, f64), (f64, f64)) {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for (x, y) in points {
+        let inside = x_range.is_none_or(|(a, b)| x >= a && x <= b);
+        if x.is_finite() && y.is_finite() && inside {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let xr = x_range.unwrap_or_else(|| padded(x0, x1));
+    (xr, padded(y0, y1))
+}
+
+/// A captioned chart with labelled axes over the given ranges (the house style of every panel).
+fn framed_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    (xlabel, ylabel): (&str, &str),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
 /// A labelled line for [`legend_panel`].
 struct Labelled<'a> {
     points: Vec<(f64, f64)>,
@@ -265,45 +325,11 @@ fn legend_panel<DB: DrawingBackend>(
     markers: &[(f64, &str, RGBColor)],
     x_range: Option<(f64, f64)>,
 ) -> Result<(), String> {
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
+    let ((x0, x1), (y0, y1)) = data_box(
+        series.iter().flat_map(|s| s.points.iter().copied()),
+        x_range,
     );
-    for s in series {
-        for &(x, y) in &s.points {
-            let inside = x_range.is_none_or(|(a, b)| x >= a && x <= b);
-            if x.is_finite() && y.is_finite() && inside {
-                x0 = x0.min(x);
-                x1 = x1.max(x);
-                y0 = y0.min(y);
-                y1 = y1.max(y);
-            }
-        }
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let (x0, x1) = match x_range {
-        Some(r) => r,
-        None => padded(x0, x1),
-    };
-    let (y0, y1) = padded(y0, y1);
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(xlabel)
-        .y_desc(ylabel)
-        .label_style(("sans-serif", 14))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), (x0, x1), (y0, y1))?;
     for s in series {
         let c = s.colour;
         chart
@@ -370,40 +396,8 @@ fn marked_panel<DB: DrawingBackend>(
     series: &[(Vec<(f64, f64)>, RGBColor)],
     marks: Marks,
 ) -> Result<(), String> {
-    let pts = series.iter().flat_map(|(v, _)| v.iter());
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in pts {
-        if x.is_finite() && y.is_finite() {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let (x0, x1) = padded(x0, x1);
-    let (y0, y1) = padded(y0, y1);
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(xlabel)
-        .y_desc(ylabel)
-        .label_style(("sans-serif", 14))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let (xr, yr) = data_box(series.iter().flat_map(|(v, _)| v.iter().copied()), None);
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
     for (v, c) in series {
         match marks {
             Marks::Lines => chart
