@@ -410,8 +410,8 @@ impl RandolphQuiggin {
         }
         let pu0 = self.pu(z0).0;
         let unit = 1.0 / self.k;
-        // Never below 10⁻⁵·D nor 10⁻⁶·z0: the scan ends within about 10⁶ steps whatever the parameters.
-        let max_step = (0.25 * unit).max(1e-5 * self.p.diameter).max(1e-6 * z0);
+        let max_step = (0.25 * unit).max(1e-5 * self.p.diameter);
+        // Never zero, even when D/Kmax underflows (`hi − 0 = hi` would scan for ever).
         let mut step = (1e-3 * unit).clamp(1e-3 * max_step, max_step);
         let mut hi = z0; // P5(hi) > 0
         loop {

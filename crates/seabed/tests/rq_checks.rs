@@ -390,36 +390,41 @@ fn bracketed_root_closes_on_neighbours() {
 /// half an ulp and it never returned) and agrees with a plain scan-and-bisect for Table 1.
 #[test]
 fn suction_onset_ends_for_any_kmax() {
+    // Ends, and returns a root inside (0, z0] if any, for an uplift from z0 on the backbone.
+    let ends = |p: RqParams, z0: f64, what: String| {
+        let l = law(p);
+        let p0 = l.p_ip(z0).0;
+        let t = std::time::Instant::now();
+        let zc = l.suction_onset(z0, p0);
+        assert!(t.elapsed().as_secs_f64() < 1.0, "{what}");
+        if let Some(zc) = zc {
+            assert!(zc > 0.0 && zc <= z0, "{what}: {zc}");
+        }
+    };
     for k_max in [200.0, 1e6, 1e17, 1e300] {
-        let l = law(RqParams {
+        let p = RqParams {
             k_max,
             ..RqParams::table1()
-        });
-        let z0 = 0.05;
-        let p0 = l.p_ip(z0).0;
-        let t = std::time::Instant::now();
-        let zc = l.suction_onset(z0, p0);
-        assert!(t.elapsed().as_secs_f64() < 1.0, "k_max {k_max}");
-        if let Some(zc) = zc {
-            assert!(zc > 0.0 && zc <= z0, "k_max {k_max}: {zc}");
-        }
+        };
+        ends(p, 0.05, format!("k_max {k_max}"));
     }
-    // … and whatever the diameter (the fuzz target found a hang with D = 1e-300 m: D/Kmax underflowed
-    // to zero and so did the scan step); the scan step is also never below 1e-6·z0.
+    // … and whatever the diameter (the fuzz target hung on an outer diameter of 1e-300 m, which
+    // scenes now refuse).
     for diameter in [1e-300, 1e-12, 1e-6] {
-        let l = law(RqParams {
+        let p = RqParams {
             diameter,
             ..RqParams::table1()
-        });
-        let z0 = 0.5 * diameter;
-        let p0 = l.p_ip(z0).0;
-        let t = std::time::Instant::now();
-        let zc = l.suction_onset(z0, p0);
-        assert!(t.elapsed().as_secs_f64() < 1.0, "D {diameter}");
-        if let Some(zc) = zc {
-            assert!(zc > 0.0 && zc <= z0, "D {diameter}: {zc}");
-        }
+        };
+        ends(p, 0.5 * diameter, format!("D {diameter}"));
     }
+    // … and when D/Kmax underflows to zero (D 1e-300 m, Kmax 1e300): the scan's first step was
+    // 10⁻³·D/Kmax = 0, and `hi − 0 = hi` for ever.
+    let p = RqParams {
+        diameter: 1e-300,
+        k_max: 1e300,
+        ..RqParams::table1()
+    };
+    ends(p, 0.5e-300, "D/Kmax = 0".into());
     // Against a plain bisection of P5 on the same bracket (Table 1, an uplift from 5 cm).
     let l = law(RqParams::table1());
     let (z0, p0) = (0.05, l.p_ip(0.05).0);
