@@ -286,6 +286,14 @@ fn stiff_clay_completes_and_halving_the_step_agrees() {
         t2b - t2a
     );
     assert!(a.cuts < 100, "{} cuts", a.cuts);
+    // The cut steps are reported where they happen: the touchdown zone.
+    assert!(!a.cut_log.is_empty() && a.cut_log.len() <= a.cuts as usize);
+    for c in &a.cut_log {
+        assert!(
+            (1100.0..1250.0).contains(&c.arc) && c.t >= 0.0 && c.dt <= 0.05 + 1e-12,
+            "{c:?}"
+        );
+    }
     assert!((m1 / m2 - 1.0).abs() < 0.01, "{m1} vs {m2}");
     assert!(((t1b - t1a) / (t2b - t2a) - 1.0).abs() < 0.02);
     // The touchdown zone does lift to the mudline (the case tests lift-off, not resting contact).
