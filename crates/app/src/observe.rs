@@ -60,6 +60,19 @@ pub enum Stop {
     Interrupted(String),
     /// The run was asked to stop after a number of steps (`stop_after`).
     StoppedAfter(u64),
+    /// A converged step gave a value that is not a finite number (see
+    /// [`crate::run::first_non_finite`]); it was not handed to any observer, so nothing
+    /// non-finite is written.
+    NonFinite {
+        /// The time of the step, s.
+        t: f64,
+        /// The quantity (`tension`, `moment`, `velocity`, …).
+        field: &'static str,
+        /// The node.
+        node: usize,
+        /// The node's arc length from the top, m.
+        arc: f64,
+    },
 }
 
 impl std::fmt::Display for Stop {
@@ -68,6 +81,17 @@ impl std::fmt::Display for Stop {
             Stop::Failed(e) => write!(f, "{e}"),
             Stop::Interrupted(r) => write!(f, "interrupted: {r}"),
             Stop::StoppedAfter(k) => write!(f, "stopped as asked after step {k}"),
+            Stop::NonFinite {
+                t,
+                field,
+                node,
+                arc,
+            } => write!(
+                f,
+                "the step to t = {t:.6} s gave a {field} that is not a finite number at node {node} \
+                 (arc {arc:.3} m); the run stopped at the step before it (check the inputs that \
+                 drive {field}: loads, motions, material and seabed numbers)"
+            ),
         }
     }
 }

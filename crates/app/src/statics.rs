@@ -94,6 +94,17 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
     let results = statics::line_results(&model, &placement, &u, &mut ws, |_, p| {
         seabed.map_or(0.0, |s| s.seabed.backbone(p).total())
     });
+    let zeros = vec![0.0; u.len()];
+    if let Some((field, node)) = crate::run::first_non_finite(&results, &u, &zeros, &zeros) {
+        return Err(AppError::Run {
+            file: scene.file.clone(),
+            message: format!(
+                "the static solution has a {field} that is not a finite number at node {node} \
+                 (arc {:.3} m); check the loads, material and seabed numbers",
+                model.arc[node]
+            ),
+        });
+    }
     let res = &ws.asm.residual;
     let n3 = res.len();
     let summary = statics::summarise(

@@ -64,13 +64,16 @@ fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
 /// re-contact. Nodes that rest on the seabed in the statics lift off; the resting far field (arc ≥
 /// 1300 m) stays within 1.5 times its static penetration plus 0.1D (a solver that ratchets the soil,
 /// e.g. by committing Newton iterates or chattering, drives it down), and the slammed touchdown zone
-/// stays above 3 m. Shortened to 24 s in CI.
+/// stays above 3 m. The whole 60 s: with backtracking Newton it needs 263 step cuts (2022 without,
+/// when full Newton steps cycled at the lift-off snap-through: `catena_fe::dynamics`); fewer than
+/// 600 are allowed.
 #[test]
 fn sticky_soil_lift_off_and_recontact() {
     let r = run_case("hard/sticky-soil", |t| {
-        t.edit("duration = 60.0", "duration = 24.0")
-            .edit("envelope_start = 30.0", "envelope_start = 0.0")
+        t.edit("envelope_start = 30.0", "envelope_start = 0.0")
     });
+    assert!(r.completed(), "{:?}", r.stop);
+    assert!(r.cuts < 600, "{} step cuts", r.cuts);
     let stat = &r.statics.results.penetration;
     let e = &r.envelopes;
     let lifted = (0..stat.len())

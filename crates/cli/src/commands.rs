@@ -165,15 +165,17 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         out.display()
     );
     match &r.stop {
-        Some(Stop::Failed(_)) | Some(Stop::Interrupted(_)) => Err(AppError::Run {
-            file: r.statics.scene.file.clone(),
-            message: format!(
-                "{}\n{t}results up to the last converged step (t = {} s) are in {}",
-                r.stop.as_ref().map(ToString::to_string).unwrap_or_default(),
-                r.t_reached,
-                h5p.display()
-            ),
-        }),
+        Some(Stop::Failed(_)) | Some(Stop::Interrupted(_)) | Some(Stop::NonFinite { .. }) => {
+            Err(AppError::Run {
+                file: r.statics.scene.file.clone(),
+                message: format!(
+                    "{}\n{t}results up to the last converged step (t = {} s) are in {}",
+                    r.stop.as_ref().map(ToString::to_string).unwrap_or_default(),
+                    r.t_reached,
+                    h5p.display()
+                ),
+            })
+        }
         _ => Ok(t),
     }
 }
