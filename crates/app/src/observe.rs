@@ -61,7 +61,7 @@ pub enum Stop {
     /// The run was asked to stop after a number of steps (`stop_after`).
     StoppedAfter(u64),
     /// A converged step gave a value that is not a finite number (see
-    /// [`crate::run::first_non_finite`]); it was not handed to any observer, so nothing
+    /// [`catena_fe::assembly::first_non_finite`]); it was not handed to any observer, so nothing
     /// non-finite is written.
     NonFinite {
         /// The time of the step, s.
@@ -501,5 +501,96 @@ impl Observer for Checkpointer {
         cp.write(&self.path)?;
         self.written += 1;
         Ok(())
+    }
+}
+
+/// The recorded steps (every `output_interval`, and the initial state) kept in memory, with the
+/// names and units of `results.h5`'s `/dynamic` group: what a binding returns instead of a file.
+/// Series, one value per record: `time` (s), `top_x`, `top_z` (m), `top_tension` (N) and
+/// `touchdown_arc` (m, the anchor's arc length when nothing touches down after a clear node).
+/// Fields, one row of one value per node (in the order of `arc`) per record: `x`, `z` (m),
+/// `effective_tension` (N), `bending_moment` (N·m, negative = sag), `penetration` (m, positive
+/// down) and `seabed_force` (N/m). Memory grows with the records: `8·(5 + 6·nodes)` bytes each.
+#[derive(Debug, Clone, Default)]
+pub struct Records {
+    /// Arc length of each node from the top, m.
+    pub arc: Vec<f64>,
+    /// The series, by name, in the order above.
+    pub series: Vec<(&'static str, Vec<f64>)>,
+    /// The fields, by name, each `records × nodes` values, row after row.
+    pub fields: Vec<(&'static str, Vec<f64>)>,
+}
+
+impl Records {
+    /// The series names, in order.
+    pub const SERIES: [&'static str; 5] =
+        ["time", "top_x", "top_z", "top_tension", "touchdown_arc"];
+    /// The field names, in order.
+    pub const FIELDS: [&'static str; 6] = [
+        "x",
+        "z",
+        "effective_tension",
+        "bending_moment",
+        "penetration",
+        "seabed_force",
+    ];
+
+    /// Empty records.
+    pub fn new() -> Self {
+        Self {
+            arc: Vec::new(),
+            series: Self::SERIES.iter().map(|n| (*n, Vec::new())).collect(),
+            fields: Self::FIELDS.iter().map(|n| (*n, Vec::new())).collect(),
+        }
+    }
+
+    /// The records held.
+    pub fn len(&self) -> usize {
+        self.series.first().map_or(0, |s| s.1.len())
+    }
+
+    /// Whether no record is held.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl Observer for Records {
+    fn name(&self) -> &'static str {
+        "records"
+    }
+
+    fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
+        if !s.record {
+            return Ok(Control::Continue);
+        }
+        if self.series.is_empty() {
+            *self = Self::new();
+        }
+        let arc = &ctx.model.line.arc;
+        if self.arc.is_empty() {
+            self.arc = arc.clone();
+        }
+        let r = s.results;
+        let tdp =
+            catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
+        for ((_, v), x) in self
+            .series
+            .iter_mut()
+            .zip([s.t, r.x[0], r.z[0], r.tension[0], tdp])
+        {
+            v.push(x);
+        }
+        for ((_, v), src) in self.fields.iter_mut().zip([
+            &r.x,
+            &r.z,
+            &r.tension,
+            &r.moment,
+            &r.penetration,
+            &r.seabed_force,
+        ]) {
+            v.extend_from_slice(src);
+        }
+        Ok(Control::Continue)
     }
 }

@@ -95,7 +95,8 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
         seabed.map_or(0.0, |s| s.seabed.backbone(p).total())
     });
     let zeros = vec![0.0; u.len()];
-    if let Some((field, node)) = crate::run::first_non_finite(&results, &u, &zeros, &zeros) {
+    if let Some((field, node)) = catena_fe::assembly::first_non_finite(&results, &u, &zeros, &zeros)
+    {
         return Err(AppError::Run {
             file: scene.file.clone(),
             message: format!(

@@ -387,6 +387,40 @@ pub struct LineResults {
     pub mode: Vec<u8>,
 }
 
+/// The first value of a converged step that is not a finite number, as `(quantity, node)`: the
+/// nodal results and the State's displacements, velocities and accelerations, node by node. A run
+/// stops there (`Stop::NonFinite` in the `catena` crate) before any observer sees the step, so no non-finite value is
+/// ever recorded. (Inputs are checked for finiteness and range when the scene is read; this is the
+/// guard for what the inputs did not show.)
+pub fn first_non_finite(
+    res: &LineResults,
+    u: &[f64],
+    v: &[f64],
+    a: &[f64],
+) -> Option<(&'static str, usize)> {
+    let fields: [(&'static str, &[f64], usize); 10] = [
+        ("x", &res.x, 1),
+        ("z", &res.z, 1),
+        ("rotation", &res.theta, 1),
+        ("tension", &res.tension, 1),
+        ("moment", &res.moment, 1),
+        ("penetration", &res.penetration, 1),
+        ("seabed force", &res.seabed_force, 1),
+        ("displacement", u, 3),
+        ("velocity", v, 3),
+        ("acceleration", a, 3),
+    ];
+    let n = res.x.len();
+    (0..n).find_map(|i| {
+        fields.iter().find_map(|(name, vals, per)| {
+            vals[per * i..per * (i + 1)]
+                .iter()
+                .any(|x| !x.is_finite())
+                .then_some((*name, i))
+        })
+    })
+}
+
 impl LineResults {
     /// Results for `n` nodes, zeroed.
     pub fn new(n: usize) -> Self {
@@ -400,5 +434,36 @@ impl LineResults {
             seabed_force: vec![0.0; n],
             mode: vec![0; n],
         }
+    }
+}
+
+#[cfg(test)]
+mod non_finite_tests {
+    use super::*;
+
+    #[test]
+    fn the_first_non_finite_value_is_named_with_its_node() {
+        let n = 5;
+        let mut res = LineResults::new(n);
+        let (mut u, v, mut a) = (vec![0.0; 3 * n], vec![0.0; 3 * n], vec![0.0; 3 * n]);
+        assert_eq!(first_non_finite(&res, &u, &v, &a), None);
+        res.moment[3] = f64::NAN;
+        assert_eq!(first_non_finite(&res, &u, &v, &a), Some(("moment", 3)));
+        // An earlier node comes first, whatever the quantity.
+        a[3 * 2 + 1] = f64::INFINITY;
+        assert_eq!(
+            first_non_finite(&res, &u, &v, &a),
+            Some(("acceleration", 2))
+        );
+        u[3 * 2 + 2] = f64::NEG_INFINITY;
+        assert_eq!(
+            first_non_finite(&res, &u, &v, &a),
+            Some(("displacement", 2))
+        );
+        res.seabed_force[0] = f64::NAN;
+        assert_eq!(
+            first_non_finite(&res, &u, &v, &a),
+            Some(("seabed force", 0))
+        );
     }
 }

@@ -1,0 +1,439 @@
+//! catena from Python: the native module `catena._catena`, wrapped by the `catena` package in
+//! `python/catena/` (built with maturin: `pip install ./python`).
+//!
+//! Everything runs through the library crate (`catena`): the same scene reader, checks, statics,
+//! dynamics, fatigue study and sweep as the command line, so a result is the same to the bit.
+//! Results come back in memory, never through HDF5 (a wheel needs no libhdf5): arrays as
+//! little-endian `f64` bytes with their shape, which the Python side turns into numpy arrays, and
+//! summaries as JSON text. Names and units are those of `results.h5` (see `docs/results.md`).
+//! Errors are `catena.CatenaError` with the command line's message (file, key, what was expected).
+
+use std::path::PathBuf;
+
+use catena::observe::{Control, Observer, Records, RunContext, StepView};
+use catena::run::RunOptions;
+use catena::scene::edit::Edit;
+use catena::scene::riser::RiserScene;
+use catena::scene::DirResolver;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyList};
+
+pyo3::create_exception!(
+    _catena,
+    CatenaError,
+    PyException,
+    "An error from catena: a bad input (naming the file, the key and what was expected), a solve \
+     that failed, or a run that stopped."
+);
+
+fn err(e: impl std::fmt::Display) -> PyErr {
+    CatenaError::new_err(e.to_string())
+}
+
+/// A scene: a case file read and checked, and the folder its relative paths are resolved from.
+#[pyclass(name = "Scene", module = "catena._catena", from_py_object)]
+#[derive(Clone)]
+struct PyScene {
+    scene: RiserScene,
+    files: DirResolver,
+}
+
+#[pymethods]
+impl PyScene {
+    /// Reads and checks a case file.
+    #[staticmethod]
+    fn from_file(path: PathBuf) -> PyResult<Self> {
+        let scene = catena::statics::read_scene(&path).map_err(err)?;
+        Ok(Self {
+            scene,
+            files: DirResolver::beside(&path),
+        })
+    }
+
+    /// Reads and checks a scene given as TOML text; `base_dir` resolves its relative paths (RAO
+    /// tables, motion series), `name` is what error messages call it.
+    #[staticmethod]
+    #[pyo3(signature = (text, base_dir = None, name = "<text>"))]
+    fn from_text(text: &str, base_dir: Option<PathBuf>, name: &str) -> PyResult<Self> {
+        let dir = base_dir.unwrap_or_else(|| PathBuf::from("."));
+        let files = DirResolver::beside(&dir.join(name));
+        let scene = RiserScene::parse(name, text, &files).map_err(err)?;
+        Ok(Self { scene, files })
+    }
+
+    /// A copy with keys set (`{"seabed.k": 1000.0, "dynamic.duration": 20.0}`); a value of `None`
+    /// removes the key. The edited scene is checked like a file.
+    fn edited(&self, edits: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let mut list = Vec::new();
+        for (k, v) in edits.iter() {
+            let key: String = k.extract()?;
+            if v.is_none() {
+                list.push(Edit::remove(&key));
+            } else {
+                list.push(Edit::set(&key, to_toml(&key, &v)?));
+            }
+        }
+        let scene = self.scene.edited(&list, &self.files).map_err(err)?;
+        Ok(Self {
+            scene,
+            files: self.files.clone(),
+        })
+    }
+
+    /// The scene as TOML text (after any edits).
+    #[getter]
+    fn text(&self) -> String {
+        self.scene.text.clone()
+    }
+
+    /// The file name error messages use.
+    #[getter]
+    fn file(&self) -> String {
+        self.scene.file.clone()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Scene({:?})", self.scene.file)
+    }
+}
+
+/// A Python value as a TOML value (bool, int, float, str, or a list of them).
+fn to_toml(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    if let Ok(b) = v.extract::<bool>() {
+        return Ok(toml::Value::Boolean(b));
+    }
+    if let Ok(i) = v.extract::<i64>() {
+        return Ok(toml::Value::Integer(i));
+    }
+    if let Ok(x) = v.extract::<f64>() {
+        return Ok(toml::Value::Float(x));
+    }
+    if let Ok(s) = v.extract::<String>() {
+        return Ok(toml::Value::String(s));
+    }
+    if let Ok(list) = v.cast::<PyList>() {
+        return list
+            .iter()
+            .map(|x| to_toml(key, &x))
+            .collect::<PyResult<Vec<_>>>()
+            .map(toml::Value::Array);
+    }
+    Err(CatenaError::new_err(format!(
+        "key `{key}`: expected a bool, a number, a string or a list of them"
+    )))
+}
+
+/// `(bytes, shape)` of a vector of f64, little-endian.
+fn array<'py>(py: Python<'py>, v: &[f64], shape: Vec<usize>) -> (Bound<'py, PyBytes>, Vec<usize>) {
+    let mut b = Vec::with_capacity(8 * v.len());
+    for x in v {
+        b.extend_from_slice(&x.to_le_bytes());
+    }
+    (PyBytes::new(py, &b), shape)
+}
+
+/// The static solution: `{"arrays": {name: (bytes, shape)}, "summary": json}`.
+#[pyfunction]
+fn statics<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>> {
+    let st = catena::statics::solve(scene.scene.clone()).map_err(err)?;
+    let out = PyDict::new(py);
+    let arrays = PyDict::new(py);
+    let r = &st.results;
+    let n = r.x.len();
+    for (name, v) in [
+        ("arc", &st.model.arc),
+        ("x", &r.x),
+        ("z", &r.z),
+        ("theta", &r.theta),
+        ("effective_tension", &r.tension),
+        ("bending_moment", &r.moment),
+        ("penetration", &r.penetration),
+        ("seabed_force", &r.seabed_force),
+    ] {
+        arrays.set_item(name, array(py, v, vec![n]))?;
+    }
+    out.set_item("arrays", arrays)?;
+    let s = &st.summary;
+    let summary = serde_json::json!({
+        "top_tension": s.top_tension,
+        "horizontal_tension": s.horizontal_tension,
+        "anchor_horizontal_tension": s.anchor_horizontal_tension,
+        "touchdown_arc": s.touchdown_arc,
+        "max_sag_moment": s.max_sag_moment.0, "max_sag_moment_arc": s.max_sag_moment.1,
+        "top_angle_from_vertical": s.top_angle_from_vertical,
+        "newton_iterations": st.report.iterations,
+        "wall_seconds": st.wall_seconds,
+    });
+    out.set_item("summary", summary.to_string())?;
+    Ok(out)
+}
+
+/// Calls a Python progress function every `every` steps, and stops the run on Ctrl-C.
+struct Progress<'py> {
+    py: Python<'py>,
+    callback: Option<Bound<'py, PyAny>>,
+    every: u64,
+    error: Option<PyErr>,
+}
+
+impl Observer for Progress<'_> {
+    fn name(&self) -> &'static str {
+        "python-progress"
+    }
+
+    fn step(
+        &mut self,
+        ctx: &RunContext<'_>,
+        s: &StepView<'_>,
+    ) -> Result<Control, catena::error::AppError> {
+        if s.step % self.every != 0 {
+            return Ok(Control::Continue);
+        }
+        if let Err(e) = self.py.check_signals() {
+            self.error = Some(e);
+            return Ok(Control::Stop("interrupted from Python".into()));
+        }
+        if let Some(cb) = &self.callback {
+            if let Err(e) = cb.call1((s.t, ctx.spec.duration)) {
+                self.error = Some(e);
+                return Ok(Control::Stop("the progress function raised".into()));
+            }
+        }
+        Ok(Control::Continue)
+    }
+}
+
+/// A dynamic run (statics first): `{"arrays": …, "summary": json}`. The arrays are the
+/// `results.h5` `/dynamic` series and fields (one row per record), the envelopes (`*_min`,
+/// `*_max`, from `envelope_start`) and each gauge's moment and tension at every step.
+#[pyfunction]
+#[pyo3(signature = (scene, progress = None, every = 100))]
+fn run<'py>(
+    py: Python<'py>,
+    scene: &PyScene,
+    progress: Option<Bound<'py, PyAny>>,
+    every: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut records = Records::new();
+    let mut prog = Progress {
+        py,
+        callback: progress,
+        every: every.max(1),
+        error: None,
+    };
+    let r = {
+        let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
+        catena::run::simulate(scene.scene.clone(), &mut extra, RunOptions::default())
+            .map_err(err)?
+    };
+    if let Some(e) = prog.error.take() {
+        return Err(e);
+    }
+    let out = PyDict::new(py);
+    let arrays = PyDict::new(py);
+    let (nr, n) = (records.len(), records.arc.len());
+    arrays.set_item(
+        "arc",
+        array(py, &r.model.line.arc, vec![r.model.line.arc.len()]),
+    )?;
+    for (name, v) in &records.series {
+        arrays.set_item(*name, array(py, v, vec![nr]))?;
+    }
+    for (name, v) in &records.fields {
+        arrays.set_item(*name, array(py, v, vec![nr, n]))?;
+    }
+    let e = &r.envelopes;
+    let m = e.moment_min.len();
+    for (name, v) in [
+        ("bending_moment_min", &e.moment_min),
+        ("bending_moment_max", &e.moment_max),
+        ("effective_tension_min", &e.tension_min),
+        ("effective_tension_max", &e.tension_max),
+        ("penetration_min", &e.penetration_min),
+        ("penetration_max", &e.penetration_max),
+    ] {
+        arrays.set_item(name, array(py, v, vec![m]))?;
+    }
+    for (g, tr) in r.gauges.gauges.iter().zip(&r.gauges.traces) {
+        arrays.set_item(
+            format!("gauges/{}/bending_moment", g.name),
+            array(py, &tr.moment, vec![tr.moment.len()]),
+        )?;
+        arrays.set_item(
+            format!("gauges/{}/effective_tension", g.name),
+            array(py, &tr.tension, vec![tr.tension.len()]),
+        )?;
+    }
+    if let Some(f) = &r.fatigue {
+        for fib in &f.spec.fibres {
+            if let Some(d) = f.damage_of(*fib) {
+                arrays.set_item(
+                    format!("fatigue/damage_{}", fib.name()),
+                    array(py, &d, vec![d.len()]),
+                )?;
+            }
+        }
+    }
+    out.set_item("arrays", arrays)?;
+    let (tdp_min, tdp_max) = e.touchdown;
+    let gauges: Vec<_> = r
+        .gauges
+        .gauges
+        .iter()
+        .map(|g| serde_json::json!({"name": g.name, "arc": g.arc}))
+        .collect();
+    let summary = serde_json::json!({
+        "completed": r.completed(),
+        "stop_reason": r.stop.as_ref().map(ToString::to_string),
+        "t_reached": r.t_reached,
+        "steps": r.steps,
+        "newton_iterations": r.iterations,
+        "step_cuts": r.cuts,
+        "predictor_retries": r.retries,
+        "wall_seconds": r.wall_seconds,
+        "records": nr,
+        "time_step": r.spec.dt,
+        "envelope_start": r.spec.envelope_start,
+        "touchdown_arc_min": tdp_min.is_finite().then_some(tdp_min),
+        "touchdown_arc_max": tdp_max.is_finite().then_some(tdp_max),
+        "gauges": gauges,
+        "fatigue_counted_seconds": r.fatigue.as_ref().map(|f| f.counted_seconds()),
+    });
+    out.set_item("summary", summary.to_string())?;
+    Ok(out)
+}
+
+/// Runs `f` on `jobs` threads (0: all cores) with the interpreter released.
+fn on_threads<T: Send>(
+    py: Python<'_>,
+    jobs: usize,
+    f: impl FnOnce() -> Result<T, String> + Send,
+) -> PyResult<T> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(err)?;
+    py.detach(|| pool.install(f)).map_err(err)
+}
+
+/// A fatigue study (a study file: base scene, storm table, fatigue table), every storm run in
+/// parallel: `{"arrays": {"arc", "damage_<fibre>" (annual), "life_<fibre>" (years)}, "summary"}`.
+#[pyfunction]
+#[pyo3(signature = (path, jobs = 0))]
+fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
+    use rayon::prelude::*;
+    let study = catena::study::Study::read(&path).map_err(err)?;
+    let results = on_threads(py, jobs, || {
+        study
+            .storms
+            .par_iter()
+            .map(|(storm, scene)| catena::study::run_storm(storm, scene).map_err(|e| e.to_string()))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    let arc = study
+        .storms
+        .first()
+        .map(|(_, s)| catena::statics::solve(s.clone()).map(|st| st.model.arc.clone()))
+        .transpose()
+        .map_err(err)?
+        .unwrap_or_default();
+    let out = PyDict::new(py);
+    let arrays = PyDict::new(py);
+    arrays.set_item("arc", array(py, &arc, vec![arc.len()]))?;
+    let mut lives = serde_json::Map::new();
+    for fib in study.fibres() {
+        let d = catena::study::annual_damage(&results, fib.name());
+        let life: Vec<f64> = d.iter().map(|x| 1.0 / x).collect();
+        let (i, min) =
+            life.iter().enumerate().fold(
+                (0, f64::INFINITY),
+                |b, (i, x)| if *x < b.1 { (i, *x) } else { b },
+            );
+        lives.insert(
+            fib.name().to_string(),
+            serde_json::json!({"min_life_years": min.is_finite().then_some(min),
+                               "arc": arc.get(i)}),
+        );
+        arrays.set_item(
+            format!("damage_{}", fib.name()),
+            array(py, &d, vec![d.len()]),
+        )?;
+        arrays.set_item(
+            format!("life_{}", fib.name()),
+            array(py, &life, vec![life.len()]),
+        )?;
+    }
+    out.set_item("arrays", arrays)?;
+    let storms: Vec<_> = results
+        .iter()
+        .map(|r| {
+            serde_json::json!({"id": r.storm.id, "hs": r.storm.hs, "tp": r.storm.tp,
+             "probability": r.storm.probability, "wall_seconds": r.wall_seconds,
+             "stopped": r.error})
+        })
+        .collect();
+    let summary = serde_json::json!({"file": study.file, "lives": lives, "storms": storms});
+    out.set_item("summary", summary.to_string())?;
+    Ok(out)
+}
+
+/// A parameter sweep (a plan file), every run in parallel: the merged table as JSON text, one row
+/// per parameter point (`values`, `min_life_years`, `min_life_arc`, `tdz_moment_range`,
+/// `max_penetration`, `failed`).
+#[pyfunction]
+#[pyo3(signature = (path, jobs = 0))]
+fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
+    use rayon::prelude::*;
+    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let runs = plan.runs();
+    let results = on_threads(py, jobs, || {
+        Ok(runs
+            .par_iter()
+            .map(|r| Some(catena::sweep::run_one(r)))
+            .collect::<Vec<_>>())
+    })?;
+    let points = catena::sweep::merge(&plan, &runs, &results);
+    let names: Vec<String> = plan.parameters.iter().map(|p| p.key.clone()).collect();
+    let rows: Vec<_> = points
+        .iter()
+        .map(|p| {
+            let values: serde_json::Map<String, serde_json::Value> = names
+                .iter()
+                .cloned()
+                .zip(
+                    p.values
+                        .iter()
+                        .map(|v| serde_json::to_value(v).unwrap_or(serde_json::Value::Null)),
+                )
+                .collect();
+            serde_json::json!({
+                "values": values,
+                "min_life_years": p.min_life_years.is_finite().then_some(p.min_life_years),
+                "min_life_arc": p.min_life_arc.is_finite().then_some(p.min_life_arc),
+                "tdz_moment_range": p.tdz_moment_range.is_finite().then_some(p.tdz_moment_range),
+                "max_penetration": p.max_penetration.is_finite().then_some(p.max_penetration),
+                "failed": p.failed,
+            })
+        })
+        .collect();
+    Ok(serde_json::Value::Array(rows).to_string())
+}
+
+/// The version of the catena library inside.
+#[pyfunction]
+fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}
+
+#[pymodule]
+fn _catena(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyScene>()?;
+    m.add_function(wrap_pyfunction!(statics, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(fatigue_study, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(version, m)?)?;
+    m.add("CatenaError", m.py().get_type::<CatenaError>())?;
+    Ok(())
+}
