@@ -386,11 +386,8 @@ fn a_storm_resynthesises_from_its_recorded_components() {
         .expect("waves")
         .attr("ramp")
         .expect("ramp")
-        .read_scalar::<hdf5::types::VarLenUnicode>()
-        .expect("ramp")
-        .as_str()
-        .parse()
-        .expect("number");
+        .read_scalar::<f64>()
+        .expect("ramp, a number");
     let table = catena_fe::vessel::RaoTable::parse_csv(
         &std::fs::read_to_string(root().join("cases/scr1000/semi-rao.csv")).expect("rao"),
     )

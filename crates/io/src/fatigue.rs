@@ -132,7 +132,7 @@ pub fn write_h5(path: &Path, results: &[StormResult], l: &Lives) -> Result<(), A
             ("probability", r.storm.probability),
             ("counted_seconds", r.counted_seconds),
         ] {
-            attr(&s, k, &v.to_string()).map_err(&err)?;
+            crate::h5::num_attr(&s, k, v).map_err(&err)?;
         }
         for (name, d) in &r.damage {
             vector(

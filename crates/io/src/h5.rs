@@ -55,6 +55,14 @@ pub fn attr(loc: &hdf5::Location, name: &str, value: &str) -> hdf5::Result<()> {
         .write_scalar(&text(value))
 }
 
+/// Writes a number attribute on a location.
+pub fn num_attr(loc: &hdf5::Location, name: &str, value: f64) -> hdf5::Result<()> {
+    loc.new_attr::<f64>()
+        .shape(())
+        .create(name)?
+        .write_scalar(&value)
+}
+
 /// Writes a 1-D dataset with a `units` attribute.
 pub fn vector(g: &hdf5::Group, name: &str, data: &[f64], units: &str) -> hdf5::Result<()> {
     let ds = g.new_dataset_builder().with_data(data).create(name)?;
@@ -205,8 +213,8 @@ impl Recorder {
                 catena_fe::waves::Direction::MinusX => "-x",
             };
             attr(&wg, "direction", dir).map_err(&err)?;
-            attr(&wg, "depth", &w.depth.to_string()).map_err(&err)?;
-            attr(&wg, "ramp", &w.ramp.to_string()).map_err(&err)?;
+            num_attr(&wg, "depth", w.depth).map_err(&err)?;
+            num_attr(&wg, "ramp", w.ramp).map_err(&err)?;
             attr(
                 &wg,
                 "phase_convention",
@@ -474,11 +482,7 @@ impl Observer for Recorder {
             let g = self.file.group("dynamic").map_err(&err)?;
             for (gauge, arc) in ctx.spec.gauges.iter().zip(&self.gauge_arcs) {
                 let one = g.group(&format!("gauges/{}", gauge.name)).map_err(&err)?;
-                one.new_attr::<f64>()
-                    .shape(())
-                    .create("arc")
-                    .and_then(|a| a.write_scalar(arc))
-                    .map_err(&err)?;
+                num_attr(&one, "arc", *arc).map_err(&err)?;
                 attr(&one, "arc_units", "m, from the top").map_err(&err)?;
             }
             vector(&g, "arc", &ctx.model.line.arc, "m").map_err(&err)?;
@@ -540,8 +544,8 @@ pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), App
     }
     let g = file.create_group("fatigue").map_err(&err)?;
     attr(&g, "sn_curve", &f.spec.curve_name).map_err(&err)?;
-    attr(&g, "scf", &f.spec.scf.to_string()).map_err(&err)?;
-    attr(&g, "counted_seconds", &f.counted_seconds().to_string()).map_err(&err)?;
+    num_attr(&g, "scf", f.spec.scf).map_err(&err)?;
+    num_attr(&g, "counted_seconds", f.counted_seconds()).map_err(&err)?;
     for fib in &f.spec.fibres {
         if let Some(d) = f.damage_of(*fib) {
             vector(
