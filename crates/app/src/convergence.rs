@@ -149,7 +149,8 @@ pub struct SeriesAnalysis {
     pub reference: f64,
     /// `"richardson"`, `"finest"`, or `"none"` (a single level: the errors are unknown, NaN).
     pub reference_kind: &'static str,
-    /// (value − reference)/|reference|, %, per factor.
+    /// (value − reference)/|reference|, %, per factor (NaN, unknown, for the run that is itself the
+    /// reference when there is no extrapolation).
     pub errors_percent: Vec<f64>,
 }
 
@@ -189,6 +190,9 @@ pub fn analyse(factors: &[f64], values: &[f64]) -> SeriesAnalysis {
         None => (f64::NAN, "none"),
     };
     let scale = reference.abs().max(f64::MIN_POSITIVE);
+    // The run that is itself the reference (the finest, without an extrapolation) has no estimated
+    // error: its zero would read as "exact".
+    let finest_factor = ok.last().map(|(f, _)| *f);
     SeriesAnalysis {
         factors: factors.to_vec(),
         values: values.to_vec(),
@@ -197,9 +201,16 @@ pub fn analyse(factors: &[f64], values: &[f64]) -> SeriesAnalysis {
         gci_percent: gci,
         reference,
         reference_kind,
-        errors_percent: values
+        errors_percent: factors
             .iter()
-            .map(|v| 100.0 * (v - reference) / scale)
+            .zip(values)
+            .map(|(f, v)| {
+                if reference_kind == "finest" && Some(*f) == finest_factor {
+                    f64::NAN
+                } else {
+                    100.0 * (v - reference) / scale
+                }
+            })
             .collect(),
     }
 }
@@ -572,7 +583,8 @@ mod tests {
         let a = analyse(&h, &f);
         assert_eq!(a.order, None);
         assert_eq!(a.reference_kind, "finest");
-        assert_eq!(a.errors_percent[3], 0.0);
+        // The finest run is the reference: its error is unknown, not zero.
+        assert!(a.errors_percent[3].is_nan());
         assert!((a.errors_percent[0] - 100.0 * (1.0 - 1.05) / 1.05).abs() < 1e-12);
     }
 

@@ -142,7 +142,11 @@ pub fn summary_text(st: &Study) -> String {
             for k in 0..st.outputs.len() {
                 let (em, ed) = error_of(st, k, r);
                 let e = if ser == Series::Mesh { em } else { ed };
-                let _ = write!(t, " | {:>12.4} {:>+10.4}%", r.values[k], e);
+                if e.is_finite() {
+                    let _ = write!(t, " | {:>12.4} {:>+10.4}%", r.values[k], e);
+                } else {
+                    let _ = write!(t, " | {:>12.4} {:>11}", r.values[k], "unknown");
+                }
             }
             if r.error.is_some() {
                 t.push_str("  STOPPED EARLY");
@@ -173,18 +177,22 @@ pub fn summary_text(st: &Study) -> String {
                 if e.is_finite() {
                     format!("{e:+.4} %")
                 } else {
-                    "n/a".into()
+                    "unknown".into()
                 }
+            };
+            let together = if em.is_finite() && ed.is_finite() {
+                format!("together ≤ {:.4} %", em.abs() + ed.abs())
+            } else {
+                "together unknown (refine the unknown one below the scene's own level)".into()
             };
             let _ = writeln!(
                 t,
-                "  {:<34} {:>12.4} {:<5} mesh {}, time step {}, together ≤ {}",
+                "  {:<34} {:>12.4} {:<5} mesh {}, time step {}, {together}",
                 o.label,
                 b.values[k],
                 o.unit,
                 pct(em),
                 pct(ed),
-                pct(em.abs() + ed.abs()).trim_start_matches('+')
             );
         }
     }

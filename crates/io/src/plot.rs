@@ -118,8 +118,8 @@ pub fn soil_test(
         let pu: Vec<(f64, f64)> = zs.iter().map(|&z| (rq.pu(z).0 / d / 1e3, -z / d)).collect();
         let fsuc = rq.params().f_suc;
         let psuc: Vec<(f64, f64)> = pu.iter().map(|&(p, y)| (-fsuc * p, y)).collect();
-        asym.push((pu, "Pu"));
-        asym.push((psuc, "-f_suc Pu"));
+        asym.push((pu, "Pu (bearing capacity)"));
+        asym.push((psuc, "-f_suc Pu (suction limit)"));
     }
     let p_lo = r
         .rows
@@ -156,30 +156,80 @@ pub fn soil_test(
         .label_style(("sans-serif", 16))
         .draw()
         .map_err(&err)?;
-    for (pts, label) in &asym {
+    // The two bounds in two styles: Pu long dashes in dark grey, the suction limit short dashes in
+    // brown (each legend entry drawn dashed like its line).
+    for ((pts, label), (colour, dash, gap)) in asym.iter().zip([
+        (RGBColor(70, 70, 70), 10u32, 5u32),
+        (RGBColor(160, 100, 30), 3, 4),
+    ]) {
         chart
             .draw_series(DashedLineSeries::new(
                 pts.iter().copied(),
-                6,
-                4,
-                RGBColor(120, 120, 120).stroke_width(1),
+                dash,
+                gap,
+                colour.stroke_width(2),
             ))
             .map_err(&err)?
             .label(*label)
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120)));
+            .legend(move |(x, y)| {
+                let seg = (dash + gap) as i32;
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (dash as i32, 0)], colour.stroke_width(2))
+                    + PathElement::new(
+                        vec![(seg, 0), ((seg + dash as i32).min(20), 0)],
+                        colour.stroke_width(2),
+                    )
+            });
     }
-    let mut labelled = [false; 4];
+    // Many cycles merge into a block: then only the first three, every tenth and the last are
+    // drawn in the modes' colours, the others thin and light grey.
+    let n_cycles = case.cycle_of_leg.iter().copied().max().unwrap_or(0);
+    let shown = |c: usize| n_cycles <= 10 || c <= 3 || c % 10 == 0 || c == n_cycles;
+    let cycle_of_row = |i: usize| {
+        let leg = r.rows[i].leg;
+        if leg == 0 {
+            0
+        } else {
+            case.cycle_of_leg[leg - 1]
+        }
+    };
+    // Segments of one mode within one cycle; the grey ones first, so that colour stays on top.
+    let mut segments = Vec::new();
     let mut start = 0;
     while start + 1 < r.rows.len() {
         let mode = r.rows[start + 1].mode;
+        let cycle = cycle_of_row(start + 1);
         let mut end = start + 1;
-        while end + 1 < r.rows.len() && r.rows[end + 1].mode == mode {
+        while end + 1 < r.rows.len()
+            && r.rows[end + 1].mode == mode
+            && cycle_of_row(end + 1) == cycle
+        {
             end += 1;
         }
         let pts: Vec<(f64, f64)> = r.rows[start..=end]
             .iter()
             .map(|row| (row.p / d / 1e3, -row.z / d))
             .collect();
+        segments.push((pts, mode, cycle > 0 && !shown(cycle)));
+        start = end;
+    }
+    let grey = RGBColor(205, 205, 205);
+    let mut grey_labelled = false;
+    for (pts, _, _) in segments.iter().filter(|s| s.2) {
+        let series = chart
+            .draw_series(LineSeries::new(pts.iter().copied(), grey.stroke_width(1)))
+            .map_err(&err)?;
+        if !grey_labelled {
+            grey_labelled = true;
+            series
+                .label("other cycles (in colour: 1-3, every 10th, the last)")
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(2))
+                });
+        }
+    }
+    let mut labelled = [false; 4];
+    for (pts, mode, _) in segments.into_iter().filter(|s| !s.2) {
         let colour = mode_colour(mode);
         let series = chart
             .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
@@ -191,7 +241,6 @@ pub fn soil_test(
                 PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
             });
         }
-        start = end;
     }
     chart
         .configure_series_labels()
@@ -387,6 +436,35 @@ fn panel<DB: DrawingBackend>(
     marked_panel(area, caption, xlabel, ylabel, series, Marks::Lines)
 }
 
+/// Draws one panel of lines with equal scales on both axes (a metre is as long across as up): the
+/// data box of the shorter side widened about its centre to the plotting area's proportions.
+fn scaled_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    let ((x0, x1), (y0, y1)) = data_box(series.iter().flat_map(|(v, _)| v.iter().copied()), None);
+    // The plotting area inside `framed_chart`'s margins, label areas and caption.
+    let (w, h) = area.dim_in_pixel();
+    let (wp, hp) = (
+        (w as f64 - 2.0 * 12.0 - 75.0).max(1.0),
+        (h as f64 - 2.0 * 12.0 - 45.0 - 30.0).max(1.0),
+    );
+    let u = ((x1 - x0) / wp).max((y1 - y0) / hp);
+    let (xc, yc) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let xr = (xc - 0.5 * u * wp, xc + 0.5 * u * wp);
+    let yr = (yc - 0.5 * u * hp, yc + 0.5 * u * hp);
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
+    for (v, c) in series {
+        chart
+            .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
 /// Draws one panel of lines or dots, scaled to the finite data (a unit box if there is none).
 fn marked_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -437,9 +515,9 @@ pub fn static_line(
     let by_arc = |v: &[f64], scale: f64| -> Vec<(f64, f64)> {
         (0..n).map(|i| (arc[i], v[i] * scale)).collect()
     };
-    panel(
+    scaled_panel(
         &areas[0],
-        "configuration",
+        "configuration, to scale",
         "x from the anchor (m)",
         "z above the mudline (m)",
         &[(mudline, RGBColor(140, 100, 40)), (shape, blue)],
