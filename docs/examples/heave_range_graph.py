@@ -10,7 +10,7 @@ import catena
 
 run = catena.run("cases/benchmarks/scr-heave.toml")          # statics + 100 s of heave, ~0.4 s
 arc = run["arc"]                                              # m from the top
-rng = run["bending_moment_max"] - run["bending_moment_min"]  # N·m, over t >= envelope_start
+rng = run["ranges/bending_moment/max"] - run["ranges/bending_moment/min"]  # N·m, over t >= envelope_start
 i = rng.argmax()
 print(f"largest moment range {rng[i] / 1e3:.2f} kN·m at {arc[i]:.1f} m; "
       f"touchdown point {run.summary['touchdown_arc_min']:.1f}–{run.summary['touchdown_arc_max']:.1f} m")
@@ -22,8 +22,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 fig, ax = plt.subplots(figsize=(8, 4))
-ax.plot(arc, run["bending_moment_max"] / 1e3, label="maximum")
-ax.plot(arc, run["bending_moment_min"] / 1e3, label="minimum")
+ax.plot(arc, run["ranges/bending_moment/max"] / 1e3, label="maximum")
+ax.plot(arc, run["ranges/bending_moment/min"] / 1e3, label="minimum")
 ax.plot(arc, rng / 1e3, "k", label="range")
 ax.axvspan(run.summary["touchdown_arc_min"], run.summary["touchdown_arc_max"], color="0.85",
            label="touchdown point visits")

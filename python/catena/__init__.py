@@ -10,7 +10,7 @@ arc length from the top (m), negative moment = sag (N*m), penetration of the inv
 >>> short = scene.edited({"dynamic.duration": 20.0, "dynamic.envelope_start": 10.0})
 >>> run = catena.run(short)
 >>> run["bending_moment"].shape            # (records, nodes)
->>> run["bending_moment_max"] - run["bending_moment_min"]   # the moment range along the arc
+>>> run["ranges/bending_moment/max"] - run["ranges/bending_moment/min"]   # the moment range along the arc
 
 Errors are :class:`CatenaError`, with the command line's messages (file, key, what was expected).
 """

@@ -50,6 +50,15 @@ def test_run_equals_the_command_lines_results_h5_to_the_bit(short_heave, tmp_pat
         for name in ["x", "z", "effective_tension", "bending_moment", "penetration", "seabed_force"]:
             assert r[name].shape == d[name].shape, name
             assert np.array_equal(r[name], d[name][...]), name
+        # Range graphs: the same quantities, to the bit (no section in this scene: no stresses).
+        ranges = sorted(f["ranges"].keys())
+        assert ranges == sorted(
+            ["bending_moment", "effective_tension", "curvature", "penetration", "seabed_force"]
+        )
+        for q in ranges:
+            for what in ["min", "max", "mean"]:
+                key = f"ranges/{q}/{what}"
+                assert np.array_equal(r[key], f[key][...], equal_nan=True), key
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     dyn = summary["dynamic"]
     assert r.summary["completed"] and dyn["completed"]
@@ -58,7 +67,7 @@ def test_run_equals_the_command_lines_results_h5_to_the_bit(short_heave, tmp_pat
     # 41 records: t = 0, 0.5, ..., 20 s; 401 nodes of the heave riser.
     assert r["bending_moment"].shape == (41, 401)
     # The range graph: the envelopes from envelope_start, max above min where the line moves.
-    rng = r["bending_moment_max"] - r["bending_moment_min"]
+    rng = r["ranges/bending_moment/max"] - r["ranges/bending_moment/min"]
     assert rng.max() > 1e4 and (rng >= 0).all()
 
 

@@ -268,9 +268,9 @@ pub fn output_defs(scene: &RiserScene) -> Vec<OutputDef> {
 pub fn touchdown_zone(r: &DynamicRun) -> Option<(f64, f64)> {
     let e = &r.envelopes;
     let arc = &r.model.line.arc;
-    let touched = |i: usize| e.penetration_max[i].is_finite() && e.penetration_max[i] > 0.0;
+    let touched = |i: usize| e.penetration.max[i].is_finite() && e.penetration.max[i] > 0.0;
     let mut idx: Vec<usize> = (0..arc.len())
-        .filter(|&i| touched(i) && e.penetration_min[i] < 0.0)
+        .filter(|&i| touched(i) && e.penetration.min[i] < 0.0)
         .collect();
     if idx.is_empty() {
         idx = (0..arc.len()).filter(|&i| touched(i)).collect();
@@ -306,7 +306,8 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
     v.push(tmax * 1e-3);
     if has_seabed {
         let p = e
-            .penetration_max
+            .penetration
+            .max
             .iter()
             .copied()
             .filter(|p| p.is_finite())

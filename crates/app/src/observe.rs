@@ -181,84 +181,270 @@ pub fn extremes(v: &[f64]) -> (f64, f64) {
         })
 }
 
-/// Per-node envelopes over the envelope window, from every step.
+/// One quantity's range graph along the line: per node, the least and greatest value and the sum
+/// (for the mean) over the steps of the envelope window.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Range {
+    /// Least value per node.
+    pub min: Vec<f64>,
+    /// Greatest value per node.
+    pub max: Vec<f64>,
+    /// Sum over the steps taken, per node (`mean = sum / samples`).
+    pub sum: Vec<f64>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct RangeSaved {
+    min: Vec<Option<f64>>,
+    max: Vec<Option<f64>>,
+    sum: Vec<f64>,
+}
+
+impl Range {
+    /// An empty range for `n` nodes.
+    pub fn new(n: usize) -> Self {
+        Self {
+            min: vec![f64::INFINITY; n],
+            max: vec![f64::NEG_INFINITY; n],
+            sum: vec![0.0; n],
+        }
+    }
+
+    /// Takes one step's values, one per node (a loop per array, which the compiler vectorises).
+    fn take(&mut self, v: &[f64]) {
+        for (m, x) in self.min.iter_mut().zip(v) {
+            *m = m.min(*x);
+        }
+        for (m, x) in self.max.iter_mut().zip(v) {
+            *m = m.max(*x);
+        }
+        for (m, x) in self.sum.iter_mut().zip(v) {
+            *m += *x;
+        }
+    }
+
+    /// `max − min` per node.
+    pub fn range(&self) -> Vec<f64> {
+        self.max.iter().zip(&self.min).map(|(a, b)| a - b).collect()
+    }
+
+    /// The mean over `samples` steps per node (NaN when there were none).
+    pub fn mean(&self, samples: u64) -> Vec<f64> {
+        let k = if samples > 0 {
+            1.0 / samples as f64
+        } else {
+            f64::NAN
+        };
+        self.sum.iter().map(|s| s * k).collect()
+    }
+
+    fn save(&self) -> RangeSaved {
+        RangeSaved {
+            min: enc(&self.min),
+            max: enc(&self.max),
+            sum: self.sum.clone(),
+        }
+    }
+
+    fn restore(&mut self, s: RangeSaved, name: &str) -> Result<(), String> {
+        let n = self.min.len();
+        for (what, len) in [
+            ("min", s.min.len()),
+            ("max", s.max.len()),
+            ("sum", s.sum.len()),
+        ] {
+            if len != n {
+                return Err(format!(
+                    "envelopes.{name}.{what} has {len} entries, expected {n}"
+                ));
+            }
+        }
+        self.min = dec(&s.min, f64::INFINITY);
+        self.max = dec(&s.max, f64::NEG_INFINITY);
+        self.sum = s.sum;
+        Ok(())
+    }
+}
+
+/// The quantities with a range graph: `(name, units, what)`. The name is the HDF5 group under
+/// `/ranges` and the Python key; the last three need the pipe's section (`line.wall` and
+/// `line.contents_density`, or `[fatigue]`).
+pub const RANGE_QUANTITIES: [(&str, &str, &str); 8] = [
+    (
+        "bending_moment",
+        "N*m",
+        "bending moment, negative in a sag bend",
+    ),
+    ("effective_tension", "N", "effective tension"),
+    ("curvature", "1/m", "curvature M/EI, negative in a sag bend"),
+    (
+        "penetration",
+        "m",
+        "penetration of the invert below the mudline, positive down",
+    ),
+    (
+        "seabed_force",
+        "N/m",
+        "seabed force per unit length (resistance, buoyancy and damping), positive up",
+    ),
+    (
+        "wall_tension",
+        "N",
+        "wall tension T_w = T_e + p_i A_i - p_o A_o",
+    ),
+    (
+        "stress_top",
+        "Pa",
+        "axial stress at the outer fibre on the upper side, T_w/A - M r/I (no SCF)",
+    ),
+    (
+        "stress_bottom",
+        "Pa",
+        "axial stress at the outer fibre on the lower side, T_w/A + M r/I (no SCF)",
+    ),
+];
+
+/// Per-node range graphs (least, greatest, mean) over the envelope window, from every step: bending
+/// moment, effective tension, curvature, penetration and seabed force; with the pipe's section also
+/// wall tension and the outer fibre's stresses (top and bottom of the section).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Envelopes {
-    /// Minimum bending moment, N·m.
-    pub moment_min: Vec<f64>,
-    /// Maximum bending moment, N·m.
-    pub moment_max: Vec<f64>,
-    /// Minimum effective tension, N.
-    pub tension_min: Vec<f64>,
-    /// Maximum effective tension, N.
-    pub tension_max: Vec<f64>,
-    /// Maximum penetration, m.
-    pub penetration_max: Vec<f64>,
-    /// Minimum penetration, m (negative: clear of the seabed).
-    pub penetration_min: Vec<f64>,
+    /// Bending moment, N·m (negative = sag).
+    pub moment: Range,
+    /// Effective tension, N.
+    pub tension: Range,
+    /// Curvature `M/EI`, 1/m (negative = sag).
+    pub curvature: Range,
+    /// Penetration of the invert, m (positive down; negative: clear of the seabed).
+    pub penetration: Range,
+    /// Seabed force per unit length, N/m.
+    pub seabed_force: Range,
+    /// With the section: wall tension (N) and the outer fibre's axial stress at the top and the
+    /// bottom of the section (Pa, no SCF), in that order.
+    pub wall: Option<[Range; 3]>,
     /// Steps taken into the envelopes.
     pub samples: u64,
     /// The touchdown point's least and greatest arc length, m (`catena_fe::statics::touchdown_arc`;
     /// infinite while no step has a touchdown point).
     pub touchdown: (f64, f64),
+    /// `1/EI` per node (the mean of the adjacent elements' EI).
+    inv_ei: Vec<f64>,
+    /// Scratch for a derived quantity, one value per node (allocated once).
+    scratch: Vec<f64>,
+    section: Option<crate::fatigue::stress::PipeSection>,
 }
 
 #[derive(Serialize, Deserialize)]
 struct EnvelopesSaved {
     #[serde(default)]
     touchdown: Option<(f64, f64)>,
-    moment_min: Vec<Option<f64>>,
-    moment_max: Vec<Option<f64>>,
-    tension_min: Vec<Option<f64>>,
-    tension_max: Vec<Option<f64>>,
-    penetration_max: Vec<Option<f64>>,
-    penetration_min: Vec<Option<f64>>,
+    ranges: Vec<RangeSaved>,
     samples: u64,
 }
 
 impl Envelopes {
-    /// Empty envelopes for `n` nodes.
-    pub fn new(n: usize) -> Self {
+    /// Empty envelopes for a line of elements with bending stiffnesses `ei` (N·m², one per element:
+    /// the nodes are one more), with the pipe's section if it is known.
+    pub fn new(ei: &[f64], section: Option<crate::fatigue::stress::PipeSection>) -> Self {
+        let n = ei.len() + 1;
+        let inv_ei = (0..n)
+            .map(|i| {
+                let (a, b) = (ei.get(i.wrapping_sub(1)), ei.get(i));
+                let mean = match (a, b) {
+                    (Some(a), Some(b)) => 0.5 * (a + b),
+                    (Some(a), None) | (None, Some(a)) => *a,
+                    (None, None) => f64::NAN,
+                };
+                1.0 / mean
+            })
+            .collect();
         Self {
-            moment_min: vec![f64::INFINITY; n],
-            moment_max: vec![f64::NEG_INFINITY; n],
-            tension_min: vec![f64::INFINITY; n],
-            tension_max: vec![f64::NEG_INFINITY; n],
-            penetration_max: vec![f64::NEG_INFINITY; n],
-            penetration_min: vec![f64::INFINITY; n],
+            moment: Range::new(n),
+            tension: Range::new(n),
+            curvature: Range::new(n),
+            penetration: Range::new(n),
+            seabed_force: Range::new(n),
+            wall: section.map(|_| [Range::new(n), Range::new(n), Range::new(n)]),
             samples: 0,
             touchdown: (f64::INFINITY, f64::NEG_INFINITY),
+            inv_ei,
+            scratch: vec![0.0; n],
+            section,
         }
     }
 
+    /// Every range graph with its name (as in [`RANGE_QUANTITIES`]); the section's three only when
+    /// the section is known.
+    pub fn ranges(&self) -> Vec<(&'static str, &Range)> {
+        let mut v = vec![
+            (RANGE_QUANTITIES[0].0, &self.moment),
+            (RANGE_QUANTITIES[1].0, &self.tension),
+            (RANGE_QUANTITIES[2].0, &self.curvature),
+            (RANGE_QUANTITIES[3].0, &self.penetration),
+            (RANGE_QUANTITIES[4].0, &self.seabed_force),
+        ];
+        if let Some(w) = &self.wall {
+            for (k, r) in w.iter().enumerate() {
+                v.push((RANGE_QUANTITIES[5 + k].0, r));
+            }
+        }
+        v
+    }
+
+    fn ranges_mut(&mut self) -> Vec<&mut Range> {
+        let mut v = vec![
+            &mut self.moment,
+            &mut self.tension,
+            &mut self.curvature,
+            &mut self.penetration,
+            &mut self.seabed_force,
+        ];
+        if let Some(w) = &mut self.wall {
+            v.extend(w.iter_mut());
+        }
+        v
+    }
+
     fn update(&mut self, s: &LineResults) {
-        for i in 0..s.moment.len() {
-            self.moment_min[i] = self.moment_min[i].min(s.moment[i]);
-            self.moment_max[i] = self.moment_max[i].max(s.moment[i]);
-            self.tension_min[i] = self.tension_min[i].min(s.tension[i]);
-            self.tension_max[i] = self.tension_max[i].max(s.tension[i]);
-            self.penetration_max[i] = self.penetration_max[i].max(s.penetration[i]);
-            self.penetration_min[i] = self.penetration_min[i].min(s.penetration[i]);
+        self.moment.take(&s.moment);
+        self.tension.take(&s.tension);
+        self.penetration.take(&s.penetration);
+        self.seabed_force.take(&s.seabed_force);
+        let k = &mut self.scratch;
+        for ((k, m), c) in k.iter_mut().zip(&s.moment).zip(&self.inv_ei) {
+            *k = m * c;
+        }
+        self.curvature.take(k);
+        if let (Some(sec), Some([wt, top, bottom])) = (&self.section, &mut self.wall) {
+            let (inv_a, r_over_i) = (
+                1.0 / sec.area(),
+                sec.radius(crate::fatigue::stress::Fibre::Outer) / sec.inertia(),
+            );
+            for ((w, t), z) in k.iter_mut().zip(&s.tension).zip(&s.z) {
+                *w = t + sec.wall_minus_effective(*z);
+            }
+            wt.take(k);
+            for (w, m) in k.iter_mut().zip(&s.moment) {
+                *w = *w * inv_a - m * r_over_i;
+            }
+            top.take(k);
+            // bottom = top + 2 M r/I
+            for (w, m) in k.iter_mut().zip(&s.moment) {
+                *w += 2.0 * m * r_over_i;
+            }
+            bottom.take(k);
         }
         self.samples += 1;
     }
 
     /// The moment range at each node.
     pub fn moment_range(&self) -> Vec<f64> {
-        self.moment_max
-            .iter()
-            .zip(&self.moment_min)
-            .map(|(a, b)| a - b)
-            .collect()
+        self.moment.range()
     }
 
     /// The tension range at each node.
     pub fn tension_range(&self) -> Vec<f64> {
-        self.tension_max
-            .iter()
-            .zip(&self.tension_min)
-            .map(|(a, b)| a - b)
-            .collect()
+        self.tension.range()
     }
 }
 
@@ -280,38 +466,24 @@ impl Observer for Envelopes {
     fn save(&mut self) -> Result<Value, AppError> {
         Ok(serde_json::to_value(EnvelopesSaved {
             touchdown: self.touchdown.0.is_finite().then_some(self.touchdown),
-            moment_min: enc(&self.moment_min),
-            moment_max: enc(&self.moment_max),
-            tension_min: enc(&self.tension_min),
-            tension_max: enc(&self.tension_max),
-            penetration_max: enc(&self.penetration_max),
-            penetration_min: enc(&self.penetration_min),
+            ranges: self.ranges().iter().map(|(_, r)| r.save()).collect(),
             samples: self.samples,
         })
         .unwrap_or(Value::Null))
     }
     fn restore(&mut self, v: &Value) -> Result<(), String> {
         let s: EnvelopesSaved = decode(v, "envelopes")?;
-        let n = self.moment_min.len();
-        for (name, len) in [
-            ("moment_min", s.moment_min.len()),
-            ("moment_max", s.moment_max.len()),
-            ("tension_min", s.tension_min.len()),
-            ("tension_max", s.tension_max.len()),
-            ("penetration_max", s.penetration_max.len()),
-            ("penetration_min", s.penetration_min.len()),
-        ] {
-            if len != n {
-                return Err(format!("envelopes.{name} has {len} entries, expected {n}"));
-            }
+        let names: Vec<&str> = self.ranges().iter().map(|(n, _)| *n).collect();
+        if s.ranges.len() != names.len() {
+            return Err(format!(
+                "envelopes: {} range graphs saved, this scene has {}",
+                s.ranges.len(),
+                names.len()
+            ));
         }
-        let (inf, ninf) = (f64::INFINITY, f64::NEG_INFINITY);
-        self.moment_min = dec(&s.moment_min, inf);
-        self.moment_max = dec(&s.moment_max, ninf);
-        self.tension_min = dec(&s.tension_min, inf);
-        self.tension_max = dec(&s.tension_max, ninf);
-        self.penetration_max = dec(&s.penetration_max, ninf);
-        self.penetration_min = dec(&s.penetration_min, inf);
+        for ((r, saved), name) in self.ranges_mut().into_iter().zip(s.ranges).zip(names) {
+            r.restore(saved, name)?;
+        }
         self.samples = s.samples;
         self.touchdown = s.touchdown.unwrap_or((f64::INFINITY, f64::NEG_INFINITY));
         Ok(())

@@ -185,7 +185,8 @@ pub fn run(
         source,
     })?;
     let mut state = dynamics::initial_state(&dm, &statics.u, &mut ws);
-    let mut envelopes = Envelopes::new(n);
+    let ei: Vec<f64> = dm.line.elements.iter().map(|e| e.section.ei).collect();
+    let mut envelopes = Envelopes::new(&ei, spec.section);
     let mut gauges = Gauges::new(&spec.gauges);
     let mut top = TopHistory::default();
     let mut fatigue = spec.fatigue.clone().map(|f| Fatigue::new(f, n));

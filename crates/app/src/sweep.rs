@@ -326,7 +326,8 @@ pub fn run_one(spec: &RunSpec) -> RunResult {
             res.moment_range = finite(run::key_numbers(&r).0);
             res.max_penetration = finite(
                 r.envelopes
-                    .penetration_max
+                    .penetration
+                    .max
                     .iter()
                     .copied()
                     .filter(|x| x.is_finite())

@@ -394,9 +394,9 @@ fn repeated_runs_are_bit_identical_whatever_the_threads() {
     let (c, d) = pool(2).join(|| run_text("det-c", &text), || run_text("det-d", &text));
     for other in [&b, &c, &d] {
         assert_eq!(a.top, other.top);
-        assert_eq!(a.envelopes.moment_min, other.envelopes.moment_min);
-        assert_eq!(a.envelopes.moment_max, other.envelopes.moment_max);
-        assert_eq!(a.envelopes.penetration_max, other.envelopes.penetration_max);
+        assert_eq!(a.envelopes.moment.min, other.envelopes.moment.min);
+        assert_eq!(a.envelopes.moment.max, other.envelopes.moment.max);
+        assert_eq!(a.envelopes.penetration.max, other.envelopes.penetration.max);
         assert_eq!(a.iterations, other.iterations);
     }
 }

@@ -174,7 +174,7 @@ proptest! {
             Ok(r) => {
                 prop_assert!(r.top.top_tension.iter().all(|x| x.is_finite()), "{m:?}: non-finite top tension");
                 let e = &r.envelopes;
-                for v in [&e.moment_min, &e.moment_max, &e.tension_min, &e.tension_max] {
+                for v in [&e.moment.min, &e.moment.max, &e.tension.min, &e.tension.max] {
                     prop_assert!(v.iter().all(|x| x.is_finite() || x.is_infinite() && e.samples == 0), "{m:?}: non-finite envelope");
                 }
                 if let Some(catena::observe::Stop::Failed(err)) = &r.stop {

@@ -33,11 +33,11 @@ fn run_case(name: &str, edit: impl Fn(String) -> String) -> DynamicRun {
     assert!(r.completed(), "{name}: {:?}", r.stop);
     let e = &r.envelopes;
     for v in [
-        &e.moment_min,
-        &e.moment_max,
-        &e.tension_min,
-        &e.tension_max,
-        &e.penetration_max,
+        &e.moment.min,
+        &e.moment.max,
+        &e.tension.min,
+        &e.tension.max,
+        &e.penetration.max,
     ] {
         assert!(
             v.iter().all(|x| x.is_finite()),
@@ -77,7 +77,7 @@ fn sticky_soil_lift_off_and_recontact() {
     let stat = &r.statics.results.penetration;
     let e = &r.envelopes;
     let lifted = (0..stat.len())
-        .filter(|&i| stat[i] > 0.0 && e.penetration_min[i] < 0.0)
+        .filter(|&i| stat[i] > 0.0 && e.penetration.min[i] < 0.0)
         .count();
     assert!(lifted > 10, "lift-off at {lifted} nodes");
     for i in 0..stat.len() {
@@ -89,9 +89,9 @@ fn sticky_soil_lift_off_and_recontact() {
             3.0
         };
         assert!(
-            e.penetration_max[i] <= bound,
+            e.penetration.max[i] <= bound,
             "node {i}: {} (static {})",
-            e.penetration_max[i],
+            e.penetration.max[i],
             stat[i]
         );
     }
@@ -121,7 +121,8 @@ fn violent_heave_into_compression() {
     let r = run_case("hard/violent-heave", |t| t);
     let min_t = r
         .envelopes
-        .tension_min
+        .tension
+        .min
         .iter()
         .copied()
         .fold(f64::INFINITY, f64::min);
@@ -155,9 +156,9 @@ fn riser_lands_on_the_seabed() {
         .expect("node");
     assert!(r.statics.results.penetration[i] < 0.0, "clear at the start");
     assert!(
-        r.envelopes.penetration_max[i] > 0.0,
+        r.envelopes.penetration.max[i] > 0.0,
         "landed: {}",
-        r.envelopes.penetration_max[i]
+        r.envelopes.penetration.max[i]
     );
 }
 
@@ -255,7 +256,8 @@ fn three_hour_heave_benchmark() {
     assert!((m1 / m0 - 1.0).abs() < 5e-3 && (r1 / r0 - 1.0).abs() < 5e-3);
     let pmax = r
         .envelopes
-        .penetration_max
+        .penetration
+        .max
         .iter()
         .copied()
         .fold(0.0, f64::max);
@@ -302,7 +304,7 @@ fn stiff_clay_completes_and_halving_the_step_agrees() {
     // The touchdown zone does lift to the mudline (the case tests lift-off, not resting contact).
     let lifted = (0..a.model.line.nodes())
         .filter(|&i| {
-            a.statics.results.penetration[i] > 0.0 && a.envelopes.penetration_min[i] <= 0.0
+            a.statics.results.penetration[i] > 0.0 && a.envelopes.penetration.min[i] <= 0.0
         })
         .count();
     assert!(lifted > 0, "no node lifted off");

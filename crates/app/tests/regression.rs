@@ -161,7 +161,7 @@ fn watchet_gauge_d_holds_its_numbers() {
         // Extremes come from every step: the top tension maximum is the envelope's at the top node
         // (they disagreed when the summary read the 0.1 s records).
         let (_, _, _, tmax) = run::key_numbers(&r);
-        assert_eq!(tmax, r.envelopes.tension_max[0]);
+        assert_eq!(tmax, r.envelopes.tension.max[0]);
         pin(
             &format!("{case}: gauge D pull-up minimum"),
             rising_min,

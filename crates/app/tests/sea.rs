@@ -73,7 +73,7 @@ fn a_run_in_current_starts_in_equilibrium() {
     let e = &r.envelopes;
     for i in 0..n {
         assert!(
-            e.tension_max[i] - e.tension_min[i] < 1e-5 * t0,
+            e.tension.max[i] - e.tension.min[i] < 1e-5 * t0,
             "node {i} moved"
         );
     }

@@ -66,7 +66,7 @@ pub struct RunCommandOptions {
 
 /// `catena run CASE --out DIR`: statics then dynamics; `results.h5` streamed, `summary.json`
 /// (also for a run that stopped: `"completed": false` and the reason), `static.png`,
-/// `dynamic.png` and, with gauges, `gauges.png`. A restart into the same DIR continues its
+/// `dynamic.png`, `ranges.png` and, with gauges, `gauges.png`. A restart into the same DIR continues its
 /// `results.h5`.
 pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, AppError> {
     if opts.checkpoint_every == Some(0) {
@@ -136,9 +136,11 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     drop(rec);
     let t_outputs = Instant::now();
     h5::write_fatigue(&h5p, &r)?;
+    h5::write_ranges(&h5p, &r)?;
     let js = out.join("summary.json");
     write_json(&js, &report::dynamic_json(&r))?;
     plot::dynamic(&out.join("dynamic.png"), &r)?;
+    plot::ranges(&out.join("ranges.png"), &r)?;
     if !r.spec.gauges.is_empty() {
         plot::gauges(&out.join("gauges.png"), &r)?;
     }

@@ -35,7 +35,7 @@ enum Command {
         no_plot: bool,
     },
     /// Statics, then dynamics with top-end motion. Writes DIR/results.h5 (/static and /dynamic),
-    /// DIR/summary.json and plots (static.png, dynamic.png, gauges.png with gauges).
+    /// DIR/summary.json and plots (static.png, dynamic.png, ranges.png, gauges.png with gauges, sea.png with waves).
     Run {
         /// The scene file (TOML) with a [dynamic] table.
         case: PathBuf,

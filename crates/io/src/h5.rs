@@ -11,6 +11,8 @@
 //!   `/dynamic/x`, `z`, `effective_tension`, `bending_moment`, `penetration`, `seabed_force` (n_t ×
 //!   n_nodes, f64) and `seabed_mode` (n_t × n_nodes, u8: 0 not in contact, 1 initial penetration,
 //!   2 uplift, 3 repenetration); `/dynamic/gauges/NAME/bending_moment` and `effective_tension` (n_t).
+//! - `/ranges/<quantity>/min`, `max`, `mean` (one per node): range graphs over every step from the
+//!   envelope start ([`write_ranges`], after the run);
 //! - with `[waves]`: `/dynamic/wave_elevation` (m, at the RAO origin, or at the top end's x without a
 //!   vessel), `/dynamic/top_pitch` (rad, the vessel's pitch, positive bow down; 0 without a vessel)
 //!   and `/dynamic/top_axial_motion` (m, the hang-off's displacement along the riser's static top
@@ -556,6 +558,43 @@ pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), App
             )
             .map_err(&err)?;
         }
+    }
+    file.flush().map_err(&err)?;
+    Ok(())
+}
+
+/// Writes `/ranges/<quantity>/min`, `max` and `mean` (one value per node, node order as in
+/// `/dynamic/arc`; every quantity of [`catena::observe::RANGE_QUANTITIES`] the run has) into a
+/// results file after the run. The group's attributes `start` (s) and `steps` say what they were
+/// taken over (every step from the envelope start, not only the recorded ones); each quantity's
+/// group has `units` and `description`.
+pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    if file.link_exists("ranges") {
+        file.unlink("ranges").map_err(&err)?;
+    }
+    let g = file.create_group("ranges").map_err(&err)?;
+    let e = &r.envelopes;
+    num_attr(&g, "start", r.spec.envelope_start).map_err(&err)?;
+    num_attr(&g, "steps", e.samples as f64).map_err(&err)?;
+    attr(
+        &g,
+        "description",
+        "least, greatest and mean of each quantity at each node over every step from `start`",
+    )
+    .map_err(&err)?;
+    for (name, range) in e.ranges() {
+        let (units, what) = catena::observe::RANGE_QUANTITIES
+            .iter()
+            .find(|q| q.0 == name)
+            .map_or(("", ""), |q| (q.1, q.2));
+        let q = g.create_group(name).map_err(&err)?;
+        attr(&q, "units", units).map_err(&err)?;
+        attr(&q, "description", what).map_err(&err)?;
+        vector(&q, "min", &range.min, units).map_err(&err)?;
+        vector(&q, "max", &range.max, units).map_err(&err)?;
+        vector(&q, "mean", &range.mean(e.samples), units).map_err(&err)?;
     }
     file.flush().map_err(&err)?;
     Ok(())

@@ -369,10 +369,23 @@ struct Labelled<'a> {
 fn legend_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
+    axes: (&str, &str),
+    series: &[Labelled<'_>],
+    markers: &[(f64, &str, RGBColor)],
+    x_range: Option<(f64, f64)>,
+) -> Result<(), String> {
+    lines_panel(area, caption, axes, series, markers, x_range, true)
+}
+
+/// [`legend_panel`], with the legend drawn or not (a figure of many panels shares one legend).
+fn lines_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
     (xlabel, ylabel): (&str, &str),
     series: &[Labelled<'_>],
     markers: &[(f64, &str, RGBColor)],
     x_range: Option<(f64, f64)>,
+    legend: bool,
 ) -> Result<(), String> {
     let ((x0, x1), (y0, y1)) = data_box(
         series.iter().flat_map(|s| s.points.iter().copied()),
@@ -414,14 +427,51 @@ fn legend_panel<DB: DrawingBackend>(
                 )
             });
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
+    if legend {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// A legend strip across a figure: a short line (dashed for a marker) and its label per entry.
+fn legend_strip<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(&str, RGBColor, bool)],
+) -> Result<(), String> {
+    let (w, h) = area.dim_in_pixel();
+    let y = h as i32 / 2;
+    let step = (w as i32 - 40) / entries.len().max(1) as i32;
+    for (k, (label, c, dashed)) in entries.iter().enumerate() {
+        let x = 20 + k as i32 * step;
+        if *dashed {
+            for d in 0..3 {
+                area.draw(&PathElement::new(
+                    vec![(x + 14 * d, y), (x + 14 * d + 8, y)],
+                    c.stroke_width(3),
+                ))
+                .map_err(|e| e.to_string())?;
+            }
+        } else {
+            area.draw(&PathElement::new(
+                vec![(x, y), (x + 36, y)],
+                c.stroke_width(3),
+            ))
+            .map_err(|e| e.to_string())?;
+        }
+        area.draw(&Text::new(
+            label.to_string(),
+            (x + 44, y - 9),
+            ("sans-serif", 18).into_font(),
+        ))
         .map_err(|e| e.to_string())?;
+    }
     Ok(())
 }
 
@@ -557,6 +607,158 @@ pub fn static_line(
     Ok(())
 }
 
+/// A vertical marker: `(x, label, colour)`.
+type Marker = (f64, &'static str, RGBColor);
+
+/// The touchdown point's markers — static, and the least and greatest arc length it reached — and
+/// the zoom on the zone it visits, with a margin of half its width or 20 m (±30 m about the static
+/// point if it never touched down in the window).
+fn touchdown_marks(r: &DynamicRun) -> (Vec<Marker>, Option<(f64, f64)>) {
+    let green = RGBColor(20, 140, 60);
+    let tdp_static = r.statics.summary.touchdown_arc.unwrap_or(f64::NAN);
+    let (td0, td1) = r.envelopes.touchdown;
+    let mut markers = vec![(tdp_static, "static touchdown point", green)];
+    if td0.is_finite() {
+        markers.push((
+            td0,
+            "touchdown point nearest the top",
+            RGBColor(230, 140, 20),
+        ));
+        markers.push((
+            td1,
+            "touchdown point nearest the anchor",
+            RGBColor(150, 80, 10),
+        ));
+    }
+    let zoom = if td0.is_finite() {
+        let m = (0.5 * (td1 - td0)).max(20.0);
+        Some((td0 - m, td1 + m))
+    } else if tdp_static.is_finite() {
+        Some((tdp_static - 30.0, tdp_static + 30.0))
+    } else {
+        None
+    };
+    (markers, zoom)
+}
+
+/// Range graphs (`ranges.png`): for every quantity of [`catena::observe::RANGE_QUANTITIES`] the
+/// run has, its least, greatest and mean value along the arc over the envelope window, on the whole
+/// line and zoomed on the touchdown zone.
+pub fn ranges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let e = &r.envelopes;
+    let all = e.ranges();
+    let rows = all.len().div_ceil(2) as u32;
+    let root = BitMapBackend::new(path, (2400, 50 + 420 * rows)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let title = format!(
+        "{} — range graphs over t ≥ {} s ({} steps): least, greatest and mean at each node",
+        r.statics.scene.title, r.spec.envelope_start, e.samples
+    );
+    let root = root.titled(&title, ("sans-serif", 24)).map_err(&err)?;
+    let (strip, body) = root.split_vertically(50);
+    let areas = body.split_evenly((rows as usize, 4));
+    let arc = &r.model.line.arc;
+    let (markers, zoom) = touchdown_marks(r);
+    let (blue, dark, red) = (
+        RGBColor(20, 90, 200),
+        RGBColor(60, 60, 60),
+        RGBColor(180, 30, 30),
+    );
+    let mut entries = vec![
+        ("greatest", blue, false),
+        ("mean", dark, false),
+        ("least", red, false),
+    ];
+    entries.extend(markers.iter().map(|(_, l, c)| (*l, *c, true)));
+    legend_strip(&strip, &entries).map_err(&perr)?;
+    let od = r.model.line.node_od[r.model.line.nodes() - 1];
+    let xs = "arc length from the top (m)";
+    for (k, (name, range)) in all.iter().enumerate() {
+        let (scale, axis, floor, caption) = match *name {
+            "bending_moment" => (1e-3, "M (kN·m)", None, "bending moment (negative = sag)"),
+            "effective_tension" => (1e-3, "T_e (kN)", None, "effective tension"),
+            "curvature" => (1e3, "κ (1/km)", None, "curvature M/EI (negative = sag)"),
+            "penetration" => (
+                1.0,
+                "z (m)",
+                Some(-2.0 * od),
+                "invert penetration (positive down; clear by > 2D drawn at −2D)",
+            ),
+            "seabed_force" => (
+                1e-3,
+                "F (kN/m)",
+                None,
+                "seabed force per metre (positive up)",
+            ),
+            "wall_tension" => (1e-3, "T_w (kN)", None, "wall tension"),
+            "stress_top" => (
+                1e-6,
+                "σ (MPa)",
+                None,
+                "outer-fibre axial stress, top of the section (no SCF)",
+            ),
+            _ => (
+                1e-6,
+                "σ (MPa)",
+                None,
+                "outer-fibre axial stress, bottom of the section (no SCF)",
+            ),
+        };
+        let line = |v: &[f64]| -> Vec<(f64, f64)> {
+            arc.iter()
+                .zip(v)
+                .filter(|(_, y)| y.is_finite())
+                .map(|(a, y)| (*a, floor.map_or(y * scale, |f| (y * scale).max(f))))
+                .collect()
+        };
+        let series = [
+            Labelled {
+                points: line(&range.max),
+                colour: blue,
+                label: "greatest",
+            },
+            Labelled {
+                points: line(&range.mean(e.samples)),
+                colour: dark,
+                label: "mean",
+            },
+            Labelled {
+                points: line(&range.min),
+                colour: red,
+                label: "least",
+            },
+        ];
+        lines_panel(
+            &areas[2 * k],
+            caption,
+            (xs, axis),
+            &series,
+            &markers[..1],
+            None,
+            false,
+        )
+        .map_err(&perr)?;
+        lines_panel(
+            &areas[2 * k + 1],
+            &format!(
+                "touchdown zone (zoomed): {}",
+                caption.split(" (").next().unwrap_or(caption)
+            ),
+            (xs, axis),
+            &series,
+            &markers,
+            zoom,
+            false,
+        )
+        .map_err(&perr)?;
+    }
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
 /// Envelopes and ranges along the line, and the top tension history.
 pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();
@@ -582,41 +784,16 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     let red = RGBColor(180, 30, 30);
     let blue = RGBColor(20, 90, 200);
     let grey = RGBColor(120, 120, 120);
-    let green = RGBColor(20, 140, 60);
     let lab = |points, colour, label| Labelled {
         points,
         colour,
         label,
     };
-    // The touchdown point: static, and the least and greatest arc length it reached.
-    let tdp_static = r.statics.summary.touchdown_arc.unwrap_or(f64::NAN);
-    let (td0, td1) = e.touchdown;
-    let mut markers = vec![(tdp_static, "static touchdown point", green)];
-    if td0.is_finite() {
-        markers.push((
-            td0,
-            "touchdown point nearest the top",
-            RGBColor(230, 140, 20),
-        ));
-        markers.push((
-            td1,
-            "touchdown point nearest the anchor",
-            RGBColor(150, 80, 10),
-        ));
-    }
-    // The zoom: the zone the touchdown point visits, with a margin of half its width or 20 m.
-    let zoom = if td0.is_finite() {
-        let m = (0.5 * (td1 - td0)).max(20.0);
-        Some((td0 - m, td1 + m))
-    } else if tdp_static.is_finite() {
-        Some((tdp_static - 30.0, tdp_static + 30.0))
-    } else {
-        None
-    };
+    let (markers, zoom) = touchdown_marks(r);
     let moments = || {
         vec![
-            lab(line(&e.moment_max, 1e-3), blue, "maximum"),
-            lab(line(&e.moment_min, 1e-3), red, "minimum"),
+            lab(line(&e.moment.max, 1e-3), blue, "maximum"),
+            lab(line(&e.moment.min, 1e-3), red, "minimum"),
             lab(line(&r.statics.results.moment, 1e-3), grey, "static"),
         ]
     };
@@ -662,8 +839,8 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "touchdown zone: penetration of the invert (zoomed; clear by more than 2D drawn at −2D)",
         (xs, "penetration (m), positive down"),
         &[
-            lab(pen(&e.penetration_max), blue, "maximum"),
-            lab(pen(&e.penetration_min), red, "minimum"),
+            lab(pen(&e.penetration.max), blue, "maximum"),
+            lab(pen(&e.penetration.min), red, "minimum"),
             lab(pen(&r.statics.results.penetration), grey, "static"),
         ],
         &markers,
@@ -675,8 +852,8 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "effective tension envelope",
         (xs, "T_e (kN)"),
         &[
-            lab(line(&e.tension_max, 1e-3), blue, "maximum"),
-            lab(line(&e.tension_min, 1e-3), red, "minimum"),
+            lab(line(&e.tension.max, 1e-3), blue, "maximum"),
+            lab(line(&e.tension.min, 1e-3), red, "minimum"),
             lab(line(&r.statics.results.tension, 1e-3), grey, "static"),
         ],
         &markers[..1],

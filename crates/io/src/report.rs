@@ -196,14 +196,14 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         "gauges": gauges,
         "envelopes": {
             "arc": r.model.line.arc,
-            "moment_min": nums(&e.moment_min),
-            "moment_max": nums(&e.moment_max),
-            "tension_min": nums(&e.tension_min),
-            "tension_max": nums(&e.tension_max),
+            "moment_min": nums(&e.moment.min),
+            "moment_max": nums(&e.moment.max),
+            "tension_min": nums(&e.tension.min),
+            "tension_max": nums(&e.tension.max),
             "moment_range": nums(&e.moment_range()),
             "tension_range": nums(&e.tension_range()),
-            "penetration_max": nums(&e.penetration_max),
-            "penetration_min": nums(&e.penetration_min),
+            "penetration_max": nums(&e.penetration.max),
+            "penetration_min": nums(&e.penetration.min),
         }
     });
     js

@@ -244,16 +244,15 @@ fn run<'py>(
         arrays.set_item(*name, array(py, v, vec![nr, n]))?;
     }
     let e = &r.envelopes;
-    let m = e.moment_min.len();
-    for (name, v) in [
-        ("bending_moment_min", &e.moment_min),
-        ("bending_moment_max", &e.moment_max),
-        ("effective_tension_min", &e.tension_min),
-        ("effective_tension_max", &e.tension_max),
-        ("penetration_min", &e.penetration_min),
-        ("penetration_max", &e.penetration_max),
-    ] {
-        arrays.set_item(name, array(py, v, vec![m]))?;
+    for (name, range) in e.ranges() {
+        let m = range.min.len();
+        for (what, v) in [
+            ("min", range.min.clone()),
+            ("max", range.max.clone()),
+            ("mean", range.mean(e.samples)),
+        ] {
+            arrays.set_item(format!("ranges/{name}/{what}"), array(py, &v, vec![m]))?;
+        }
     }
     for (g, tr) in r.gauges.gauges.iter().zip(&r.gauges.traces) {
         arrays.set_item(

@@ -379,6 +379,9 @@ pub struct DynamicSpec {
     pub structural_damping: Option<f64>,
     /// Fatigue counting (`[fatigue]`), if any.
     pub fatigue: Option<FatigueSpec>,
+    /// The pipe's section for wall tension and stress range graphs: `[fatigue]`'s, or from
+    /// `line.wall` and `line.contents_density` (no internal pressure) when both are given.
+    pub section: Option<PipeSection>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -1399,8 +1402,25 @@ fn dynamic_spec(
         Some(t) => Some(fatigue_of(file, raw, t, d, site)?),
         None => None,
     };
+    let l = &raw.line;
+    let section = fatigue
+        .as_ref()
+        .map(|f| f.section)
+        .or(match (l.wall, l.contents_density) {
+            (Some(wall), Some(contents_density)) => Some(PipeSection {
+                od: l.od,
+                wall,
+                contents_density,
+                internal_pressure: 0.0,
+                water_density: site.water_density,
+                gravity: site.gravity,
+                water_depth: site.water_depth,
+            }),
+            _ => None,
+        });
     Ok(DynamicSpec {
         fatigue,
+        section,
         structural_damping,
         environment: Environment {
             hydro,
