@@ -50,6 +50,19 @@ def test_run_equals_the_command_lines_results_h5_to_the_bit(short_heave, tmp_pat
         for name in ["x", "z", "effective_tension", "bending_moment", "penetration", "seabed_force"]:
             assert r[name].shape == d[name].shape, name
             assert np.array_equal(r[name], d[name][...]), name
+        # Self-describing: time and arc are HDF5 dimension scales, attached to every field and
+        # series (h5py, netCDF and xarray read them), and the decimated records are compressed.
+        assert d["time"].is_scale and d["arc"].is_scale and f["static/arc"].is_scale
+        for name in ["x", "z", "effective_tension", "bending_moment", "penetration",
+                     "seabed_force", "seabed_mode"]:
+            assert d[name].dims[0][0] == d["time"] and d[name].dims[1][0] == d["arc"], name
+            assert h5py.h5ds.is_attached(d[name].id, d["arc"].id, 1), name
+            assert d[name].compression == "gzip", name
+        for name in ["top_x", "top_z", "top_tension", "touchdown_arc"]:
+            assert d[name].dims[0][0] == d["time"], name
+        assert f["static/bending_moment"].dims[0][0] == f["static/arc"]
+        assert f["ranges/bending_moment/max"].dims[0][0] == d["arc"]
+        assert d.attrs["bending_moment"] == "negative in a sag bend"
         # Range graphs: the same quantities, to the bit (no section in this scene: no stresses).
         ranges = sorted(f["ranges"].keys())
         assert ranges == sorted(

@@ -62,6 +62,18 @@ pub struct RunCommandOptions {
     pub stop: Option<Arc<AtomicBool>>,
     /// Stop (successfully) after this many steps.
     pub stop_after: Option<u64>,
+    /// Compress the recorded float fields (`None`: when the records are decimated, see
+    /// [`compress_by_default`]).
+    pub compress: Option<bool>,
+}
+
+/// Whether `results.h5`'s float fields are compressed when the user did not say: when the records
+/// are decimated (`output_interval` > `time_step`). Recording every step, the writer thread's
+/// deflate (about 100 MB/s of doubles on this machine, for a third off the file) cannot keep up
+/// with the run and would slow it (the heave benchmark 0.34 → 0.44 s); decimated, it runs alongside
+/// for nothing (Watchet: 15 → 7.8 MB, same run time).
+pub fn compress_by_default(spec: &catena::scene::riser::DynamicSpec) -> bool {
+    spec.output_every > 1
 }
 
 /// `catena run CASE --out DIR`: statics then dynamics; `results.h5` streamed, `summary.json`
@@ -94,7 +106,10 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let mut rec = if restart.is_some() && h5p.exists() {
         Recorder::open(&h5p, st.model.nodes(), &gauge_names)?
     } else {
-        Recorder::create(&h5p, &st, &gauge_names)?
+        let compress = opts
+            .compress
+            .unwrap_or_else(|| st.scene.dynamic.as_ref().is_some_and(compress_by_default));
+        Recorder::create(&h5p, &st, &gauge_names, compress)?
     };
     plot::static_line(
         &out.join("static.png"),
@@ -133,6 +148,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     drop(extra);
     let records = rec.records();
     let recording_seconds = rec.busy_seconds();
+    let writer_seconds = rec.writer_seconds();
     drop(rec);
     let t_outputs = Instant::now();
     h5::write_fatigue(&h5p, &r)?;
@@ -151,11 +167,12 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let mut t = report::dynamic_text(&r);
     let _ = writeln!(
         t,
-        "  time: statics {:.3} s; dynamics {:.2} s ({:.0} steps/s), of which recording {:.2} s; plots and summary {:.2} s",
+        "  time: statics {:.3} s; dynamics {:.2} s ({:.0} steps/s), of which recording {:.2} s (writing and compressing {:.2} s alongside, on its own thread); plots and summary {:.2} s",
         statics_seconds,
         r.wall_seconds,
         r.steps as f64 / r.wall_seconds.max(1e-9),
         recording_seconds,
+        writer_seconds,
         outputs_seconds
     );
     let _ = writeln!(

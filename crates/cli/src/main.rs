@@ -51,6 +51,11 @@ enum Command {
         /// Continue from a checkpoint written by an earlier run of the same scene.
         #[arg(long, value_name = "FILE")]
         restart: Option<PathBuf>,
+        /// Compress results.h5's float fields (shuffle + deflate, on the writer thread): "yes",
+        /// "no", or "auto" (when the records are decimated, output_interval > time_step; recording
+        /// every step, compression would slow the run).
+        #[arg(long, value_name = "WHEN", default_value = "auto", value_parser = ["auto", "yes", "no"])]
+        compress: String,
     },
     /// What accuracy costs in time: the scene re-run with its element lengths and its time step
     /// scaled (by default x2, x1, x1/2, x1/4 each). Reports the key outputs with their errors
@@ -177,6 +182,7 @@ fn main() -> ExitCode {
             quiet,
             checkpoint_every,
             restart,
+            compress,
         } => {
             // SIGINT and SIGTERM end the run at the next converged step; its records are flushed
             // and summary.json says where it stopped.
@@ -194,6 +200,11 @@ fn main() -> ExitCode {
                     restart,
                     stop: Some(stop),
                     stop_after: None,
+                    compress: match compress.as_str() {
+                        "yes" => Some(true),
+                        "no" => Some(false),
+                        _ => None,
+                    },
                 },
             )
             .map(|t| print!("{t}"))

@@ -156,9 +156,67 @@ fn run_writes_dynamic_layout() {
         lo <= rlo && hi >= rhi && hi - lo > 0.5,
         "{lo}..{hi} vs {rlo}..{rhi}"
     );
-    for png in ["static.png", "dynamic.png", "gauges.png"] {
+    for png in ["static.png", "dynamic.png", "ranges.png", "gauges.png"] {
         assert!(std::fs::metadata(out.join(png)).expect(png).len() > 10_000);
     }
+}
+
+/// Compression of the float fields is a choice that changes no value: recording every step, the
+/// default leaves them uncompressed (the writer could not keep up); `--compress yes` deflates them,
+/// and the file reads back to the bit. Time and arc are attached as dimension scales either way.
+#[test]
+fn compression_changes_no_value() {
+    let dir = tmp("compress");
+    let case = dir.join("case.toml");
+    std::fs::write(
+        &case,
+        heave_text()
+            .edit("duration = 100.0", "duration = 3.0")
+            .edit("envelope_start = 50.0", "envelope_start = 0.0"),
+    )
+    .expect("case");
+    let (plain, packed) = (dir.join("plain"), dir.join("packed"));
+    commands::run(&case, &plain, &RunCommandOptions::default()).expect("runs");
+    commands::run(
+        &case,
+        &packed,
+        &RunCommandOptions {
+            compress: Some(true),
+            ..RunCommandOptions::default()
+        },
+    )
+    .expect("runs");
+    let fa = hdf5::File::open(plain.join("results.h5")).expect("h5");
+    let fb = hdf5::File::open(packed.join("results.h5")).expect("h5");
+    for name in [
+        "x",
+        "z",
+        "effective_tension",
+        "bending_moment",
+        "penetration",
+        "seabed_force",
+    ] {
+        let (a, b) = (
+            fa.dataset(&format!("dynamic/{name}")).expect(name),
+            fb.dataset(&format!("dynamic/{name}")).expect(name),
+        );
+        assert!(a.filters().is_empty(), "{name} compressed by default");
+        assert!(!b.filters().is_empty(), "{name} not compressed");
+        let (va, vb) = (
+            a.read_raw::<f64>().expect(name),
+            b.read_raw::<f64>().expect(name),
+        );
+        assert_eq!(va.len(), 61 * 401, "{name}");
+        assert!(
+            va.iter().zip(&vb).all(|(x, y)| x.to_bits() == y.to_bits()),
+            "{name}"
+        );
+        for f in [&a, &b] {
+            assert_eq!(f.attr("DIMENSION_LIST").expect("dims").shape(), vec![2]);
+        }
+    }
+    let time = fa.dataset("dynamic/time").expect("time");
+    assert!(time.attr("CLASS").is_ok() && time.attr("REFERENCE_LIST").is_ok());
 }
 
 /// A run whose steps cannot converge (one Newton iteration allowed) cuts the step, then stops with

@@ -20,14 +20,19 @@
 //!   each n_t; `/waves/omega` (rad/s), `/waves/wavenumber` (rad/m), `/waves/amplitude` (m) and
 //!   `/waves/phase` (rad), one value per component, with the attributes `direction` (`+x`/`-x`),
 //!   `depth` (m) and `ramp` (s): `η(x, t) = r(t)·Σ a cos(ωt − s k x + ε)` re-synthesises the record.
-//!   Written in chunks of 64 records, or every second of wall time if sooner, as the run goes, and
-//!   the file flushed each time: a run that stops keeps every record up to its last converged step,
-//!   and a run killed outright keeps `/static` and every record up to about a second before the
-//!   kill. The recorder is an observer of the run ([`Recorder`]); on restart it reopens the file,
-//!   truncates the records written after the checkpoint and continues it.
+//!   Handed in batches of 64 records, or every second of wall time if sooner, to a writer thread
+//!   that writes each batch and flushes the file while the run steps on: a run that stops keeps
+//!   every record up to its last converged step, and a run killed outright keeps `/static` and every
+//!   record up to about a second (or two batches) before the kill. The recorder is an observer of
+//!   the run ([`Recorder`]); on restart it reopens the file, truncates the records written after the
+//!   checkpoint and continues it.
+//! - `/dynamic/time`, `/dynamic/arc` and `/static/arc` are HDF5 dimension scales attached to every
+//!   field, series and per-node result ([`dimension_scales`]). The float fields are compressed
+//!   (shuffle + deflate 1) when asked, by default when the records are decimated.
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
+use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use catena::observe::{at_arc, Control, Observer, RunContext, StepView};
@@ -98,33 +103,145 @@ pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result
     ] {
         vector(&g, name, data, units).map_err(&err)?;
     }
+    let dims: Vec<(String, Vec<Option<&str>>)> = [
+        "x",
+        "z",
+        "effective_tension",
+        "bending_moment",
+        "penetration",
+        "seabed_force",
+        "theta",
+    ]
+    .iter()
+    .map(|d| (format!("static/{d}"), vec![Some("static/arc")]))
+    .collect();
+    dimension_scales(f, &dims).map_err(&err)?;
     f.flush().map_err(&err)?;
     Ok(())
 }
 
-/// Streams dynamic records into `/dynamic` as an observer of the run: a record at every output
-/// interval, written in chunks of 64 records or every second of wall time, whichever comes first.
-pub struct Recorder {
+/// The datasets of `/dynamic` and the file, as the writer thread writes them.
+struct Sink {
     path: PathBuf,
     file: hdf5::File,
     n: usize,
-    chunk: usize,
+    series: Vec<hdf5::Dataset>,
+    fields: Vec<hdf5::Dataset>,
+    modes: hdf5::Dataset,
+    /// Records in the file.
     written: usize,
+    /// Seconds spent writing (compressing, writing, flushing).
+    seconds: f64,
+}
+
+/// Records handed from the run to the writer: `rows` records of every series, field and the modes.
+struct Batch {
     rows: usize,
-    series: Vec<(hdf5::Dataset, Vec<f64>)>,
-    fields: Vec<(hdf5::Dataset, Vec<f64>)>,
-    modes: (hdf5::Dataset, Vec<u8>),
+    series: Vec<Vec<f64>>,
+    fields: Vec<Vec<f64>>,
+    modes: Vec<u8>,
+}
+
+/// What the writer thread is asked to do.
+enum Job {
+    /// Append a batch and flush the file.
+    Write(Batch),
+    /// Answer once every earlier job is done, with the first write error if there was one.
+    Sync(mpsc::SyncSender<Option<String>>),
+}
+
+/// Batches the run may queue ahead of the writer (then it waits): at most this many × 64 records in
+/// memory.
+const QUEUE: usize = 2;
+
+impl Sink {
+    fn write(&mut self, b: &Batch) -> Result<(), String> {
+        let t0 = Instant::now();
+        let e = |e: hdf5::Error| format!("HDF5: {e}");
+        let (k, m, n) = (self.written, b.rows, self.n);
+        for (ds, buf) in self.series.iter().zip(&b.series) {
+            ds.resize(k + m).map_err(e)?;
+            ds.write_slice(&buf[..], k..k + m).map_err(e)?;
+        }
+        for (ds, buf) in self.fields.iter().zip(&b.fields) {
+            ds.resize((k + m, n)).map_err(e)?;
+            let view =
+                ndarray::ArrayView2::from_shape((m, n), &buf[..]).map_err(|x| x.to_string())?;
+            ds.write_slice(&view, (k..k + m, ..)).map_err(e)?;
+        }
+        self.modes.resize((k + m, n)).map_err(e)?;
+        let view =
+            ndarray::ArrayView2::from_shape((m, n), &b.modes[..]).map_err(|x| x.to_string())?;
+        self.modes.write_slice(&view, (k..k + m, ..)).map_err(e)?;
+        self.written += m;
+        self.file.flush().map_err(e)?;
+        self.seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Cuts every `/dynamic` dataset back to `records` records.
+    fn truncate(&mut self, records: usize) -> Result<(), AppError> {
+        let err = h5err(&self.path);
+        if records > self.written {
+            return Err(AppError::Output {
+                path: self.path.clone(),
+                message: format!(
+                    "the file holds {} records, the checkpoint expects {records}",
+                    self.written
+                ),
+            });
+        }
+        for ds in &self.series {
+            ds.resize(records).map_err(&err)?;
+        }
+        for ds in &self.fields {
+            ds.resize((records, self.n)).map_err(&err)?;
+        }
+        self.modes.resize((records, self.n)).map_err(&err)?;
+        self.written = records;
+        self.file.flush().map_err(&err)?;
+        Ok(())
+    }
+}
+
+fn lock(s: &Mutex<Sink>) -> std::sync::MutexGuard<'_, Sink> {
+    // A panic on the writer thread cannot leave a half-updated Sink that matters: the file is what
+    // it wrote, and `written` is updated after the writes.
+    s.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Streams dynamic records into `/dynamic` as an observer of the run: a record at every output
+/// interval, handed to a writer thread in batches of 64 records or every second of wall time,
+/// whichever comes first. The writer compresses, writes and flushes while the run steps on; the run
+/// waits only when it is two batches ahead. A checkpoint, the end of the run and dropping the
+/// recorder wait until every batch is in the file.
+pub struct Recorder {
+    path: PathBuf,
+    sink: Arc<Mutex<Sink>>,
+    jobs: Option<mpsc::SyncSender<Job>>,
+    writer: Option<std::thread::JoinHandle<()>>,
+    /// The writer's first error, if any.
+    failed: Arc<Mutex<Option<String>>>,
+    n: usize,
+    chunk: usize,
+    /// Records handed to the writer.
+    queued: usize,
+    rows: usize,
+    series: Vec<Vec<f64>>,
+    fields: Vec<Vec<f64>>,
+    modes: Vec<u8>,
     gauge_arcs: Vec<f64>,
     /// With waves: `(x where the elevation is recorded, static top (x, z), (sin θ_top, cos θ_top))`.
     sea: Option<(f64, [f64; 2], [f64; 2])>,
     has_sea: bool,
     last_flush: Instant,
-    /// Time spent recording (buffering and writing), s.
+    /// Time the run's thread spent recording (buffering, handing over, waiting), s.
     busy: f64,
 }
 
-/// The deflate level of `/dynamic/seabed_mode` (byte shuffle first; mostly zeros, it compresses
-/// for nothing).
+/// The deflate level of the `/dynamic` fields (byte shuffle first). Level 1: the higher levels
+/// shrink full-precision floats little more for much more time (`benches/README.md`). The writer
+/// thread does it, off the run's critical path.
 const DEFLATE: u8 = 1;
 
 const SEA: [(&str, &str); 3] = [
@@ -173,8 +290,14 @@ const CONVENTIONS: [(&str, &str); 5] = [
 
 impl Recorder {
     /// Creates `path` anew with the root attributes and `/static` (flushed at once), and the empty
-    /// `/dynamic` datasets for the run's nodes and gauges.
-    pub fn create(path: &Path, statics: &StaticRun, gauges: &[String]) -> Result<Self, AppError> {
+    /// `/dynamic` datasets for the run's nodes and gauges; with `compress`, the float fields are
+    /// stored shuffled and deflated (level 1; `seabed_mode` always is).
+    pub fn create(
+        path: &Path,
+        statics: &StaticRun,
+        gauges: &[String],
+        compress: bool,
+    ) -> Result<Self, AppError> {
         let err = h5err(path);
         let file = hdf5::File::create(path).map_err(&err)?;
         write_static_into(path, &file, statics)?;
@@ -232,20 +355,19 @@ impl Recorder {
                 mk1(&one, "effective_tension", "N").map_err(&err)?;
             }
         }
+        let deflate = hdf5::filters::deflate_available();
         for (name, units) in FIELDS {
-            // Not compressed: the low bytes of full-precision values are noise. Shuffle + deflate
-            // level 1 took the heave benchmark's file from 40 to 25 MB (all fields) or 32 MB (the
-            // seabed fields alone) for 4 to 16 times the recording time (benches/README.md).
-            let ds = g
-                .new_dataset::<f64>()
-                .chunk((chunk, n))
-                .shape((0.., n))
-                .create(name)
-                .map_err(&err)?;
+            let ds = g.new_dataset::<f64>().chunk((chunk, n));
+            let ds = if deflate && compress {
+                ds.shuffle().deflate(DEFLATE)
+            } else {
+                ds
+            };
+            let ds = ds.shape((0.., n)).create(name).map_err(&err)?;
             attr(&ds, "units", units).map_err(&err)?;
         }
         let md = g.new_dataset::<u8>().chunk((chunk, n));
-        let md = if hdf5::filters::deflate_available() {
+        let md = if deflate {
             md.shuffle().deflate(DEFLATE)
         } else {
             md
@@ -280,12 +402,11 @@ impl Recorder {
         let g = file.group("dynamic").map_err(&err)?;
         let mut series = Vec::new();
         for (name, _) in SERIES {
-            series.push((g.dataset(name).map_err(&err)?, Vec::with_capacity(chunk)));
+            series.push(g.dataset(name).map_err(&err)?);
         }
         for name in gauges {
             for what in ["bending_moment", "effective_tension"] {
-                let ds = g.dataset(&format!("gauges/{name}/{what}")).map_err(&err)?;
-                series.push((ds, Vec::with_capacity(chunk)));
+                series.push(g.dataset(&format!("gauges/{name}/{what}")).map_err(&err)?);
             }
         }
         let mut fields = Vec::new();
@@ -297,26 +418,70 @@ impl Recorder {
                     message: format!("/dynamic/{name} is not for {n} nodes"),
                 });
             }
-            fields.push((ds, Vec::with_capacity(chunk * n)));
+            fields.push(ds);
         }
         let has_sea = g.link_exists("wave_elevation");
         if has_sea {
             for (name, _) in SEA {
-                series.push((g.dataset(name).map_err(&err)?, Vec::with_capacity(chunk)));
+                series.push(g.dataset(name).map_err(&err)?);
             }
         }
-        let md = g.dataset("seabed_mode").map_err(&err)?;
-        let written = series[0].0.shape().first().copied().unwrap_or(0);
-        Ok(Self {
+        let modes = g.dataset("seabed_mode").map_err(&err)?;
+        let written = series[0].shape().first().copied().unwrap_or(0);
+        let (ns, nf) = (series.len(), fields.len());
+        let sink = Arc::new(Mutex::new(Sink {
             path: path.to_path_buf(),
             file,
             n,
-            chunk,
-            written,
-            rows: 0,
             series,
             fields,
-            modes: (md, Vec::with_capacity(chunk * n)),
+            modes,
+            written,
+            seconds: 0.0,
+        }));
+        let failed = Arc::new(Mutex::new(None));
+        let (jobs, rx) = mpsc::sync_channel::<Job>(QUEUE);
+        let writer = {
+            let (sink, failed) = (Arc::clone(&sink), Arc::clone(&failed));
+            std::thread::Builder::new()
+                .name("catena-hdf5".into())
+                .spawn(move || {
+                    let first = || failed.lock().unwrap_or_else(|p| p.into_inner());
+                    for job in rx {
+                        match job {
+                            // After a failure, batches are dropped: the file keeps what was written.
+                            // (The error lock is not held while writing: the run checks it.)
+                            Job::Write(b) => {
+                                if first().is_none() {
+                                    if let Err(e) = lock(&sink).write(&b) {
+                                        *first() = Some(e);
+                                    }
+                                }
+                            }
+                            Job::Sync(reply) => {
+                                let _ = reply.send(first().clone());
+                            }
+                        }
+                    }
+                })
+                .map_err(|e| AppError::Output {
+                    path: path.to_path_buf(),
+                    message: format!("cannot start the writer thread: {e}"),
+                })?
+        };
+        Ok(Self {
+            path: path.to_path_buf(),
+            sink,
+            jobs: Some(jobs),
+            writer: Some(writer),
+            failed,
+            n,
+            chunk,
+            queued: written,
+            rows: 0,
+            series: (0..ns).map(|_| Vec::with_capacity(chunk)).collect(),
+            fields: (0..nf).map(|_| Vec::with_capacity(chunk * n)).collect(),
+            modes: Vec::with_capacity(chunk * n),
             gauge_arcs: Vec::new(),
             sea: None,
             has_sea,
@@ -336,21 +501,21 @@ impl Recorder {
         let tdp =
             catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
         for v in [t, r.x[0], r.z[0], r.tension[0], tdp] {
-            self.series[k].1.push(v);
+            self.series[k].push(v);
             k += 1;
         }
         for &s in &self.gauge_arcs {
-            self.series[k].1.push(at_arc(arc, &r.moment, s));
-            self.series[k + 1].1.push(at_arc(arc, &r.tension, s));
+            self.series[k].push(at_arc(arc, &r.moment, s));
+            self.series[k + 1].push(at_arc(arc, &r.tension, s));
             k += 2;
         }
         if let Some(v) = sea {
             for x in v {
-                self.series[k].1.push(x);
+                self.series[k].push(x);
                 k += 1;
             }
         }
-        for ((_, buf), src) in self.fields.iter_mut().zip([
+        for (buf, src) in self.fields.iter_mut().zip([
             &r.x,
             &r.z,
             &r.tension,
@@ -360,7 +525,7 @@ impl Recorder {
         ]) {
             buf.extend_from_slice(src);
         }
-        self.modes.1.extend_from_slice(&r.mode);
+        self.modes.extend_from_slice(&r.mode);
         self.rows += 1;
         if self.rows == self.chunk || self.last_flush.elapsed() >= FLUSH_EVERY {
             self.flush()?;
@@ -368,38 +533,74 @@ impl Recorder {
         Ok(())
     }
 
-    /// Writes what is buffered and flushes the file.
+    /// The writer's first error, as an output error naming the file.
+    fn check(&self) -> Result<(), AppError> {
+        let failed = self.failed.lock().unwrap_or_else(|p| p.into_inner());
+        match failed.as_ref() {
+            Some(message) => Err(AppError::Output {
+                path: self.path.clone(),
+                message: message.clone(),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Hands what is buffered to the writer (which writes it and flushes the file).
     pub fn flush(&mut self) -> Result<(), AppError> {
         self.last_flush = Instant::now();
+        self.check()?;
         if self.rows == 0 {
             return Ok(());
         }
-        let err = h5err(&self.path);
-        let (k, m, n) = (self.written, self.rows, self.n);
-        for (ds, buf) in &mut self.series {
-            ds.resize(k + m).map_err(&err)?;
-            ds.write_slice(&buf[..], k..k + m).map_err(&err)?;
-            buf.clear();
-        }
-        let shape_err = |e: ndarray::ShapeError| AppError::Output {
-            path: self.path.clone(),
-            message: e.to_string(),
+        let (chunk, n) = (self.chunk, self.n);
+        let batch = Batch {
+            rows: self.rows,
+            series: self
+                .series
+                .iter_mut()
+                .map(|b| std::mem::replace(b, Vec::with_capacity(chunk)))
+                .collect(),
+            fields: self
+                .fields
+                .iter_mut()
+                .map(|b| std::mem::replace(b, Vec::with_capacity(chunk * n)))
+                .collect(),
+            modes: std::mem::replace(&mut self.modes, Vec::with_capacity(chunk * n)),
         };
-        for (ds, buf) in &mut self.fields {
-            ds.resize((k + m, n)).map_err(&err)?;
-            let view = ndarray::ArrayView2::from_shape((m, n), &buf[..]).map_err(shape_err)?;
-            ds.write_slice(&view, (k..k + m, ..)).map_err(&err)?;
-            buf.clear();
-        }
-        let (ds, buf) = &mut self.modes;
-        ds.resize((k + m, n)).map_err(&err)?;
-        let view = ndarray::ArrayView2::from_shape((m, n), &buf[..]).map_err(shape_err)?;
-        ds.write_slice(&view, (k..k + m, ..)).map_err(&err)?;
-        buf.clear();
-        self.written += m;
+        self.send(Job::Write(batch))?;
+        self.queued += self.rows;
         self.rows = 0;
-        self.file.flush().map_err(&err)?;
         Ok(())
+    }
+
+    fn send(&self, job: Job) -> Result<(), AppError> {
+        let gone = || AppError::Output {
+            path: self.path.clone(),
+            message: "the writer thread has stopped".into(),
+        };
+        self.jobs
+            .as_ref()
+            .ok_or_else(gone)?
+            .send(job)
+            .map_err(|_| gone())
+    }
+
+    /// Hands over what is buffered and waits until every record is in the file.
+    pub fn sync(&mut self) -> Result<(), AppError> {
+        self.flush()?;
+        let (tx, rx) = mpsc::sync_channel(1);
+        self.send(Job::Sync(tx))?;
+        match rx.recv() {
+            Ok(None) => Ok(()),
+            Ok(Some(message)) => Err(AppError::Output {
+                path: self.path.clone(),
+                message,
+            }),
+            Err(_) => Err(AppError::Output {
+                path: self.path.clone(),
+                message: "the writer thread has stopped".into(),
+            }),
+        }
     }
 
     /// `(wave elevation, pitch, axial hang-off motion)` of a step, with waves.
@@ -415,39 +616,39 @@ impl Recorder {
         ])
     }
 
-    /// Seconds spent recording so far (buffering, writing, flushing).
+    /// Seconds the run's thread spent recording so far (buffering, handing over, waiting for the
+    /// writer when it was two batches behind).
     pub fn busy_seconds(&self) -> f64 {
         self.busy
     }
 
-    /// Records written so far (flushed or not).
+    /// Seconds the writer thread spent compressing, writing and flushing so far (alongside the run).
+    pub fn writer_seconds(&self) -> f64 {
+        lock(&self.sink).seconds
+    }
+
+    /// Records recorded so far (written, queued or buffered).
     pub fn records(&self) -> usize {
-        self.written + self.rows
+        self.queued + self.rows
     }
 
     /// Cuts every `/dynamic` dataset back to `records` records (a restart drops what the
     /// interrupted run wrote after its checkpoint).
     fn truncate(&mut self, records: usize) -> Result<(), AppError> {
-        let err = h5err(&self.path);
-        if records > self.written {
-            return Err(AppError::Output {
-                path: self.path.clone(),
-                message: format!(
-                    "the file holds {} records, the checkpoint expects {records}",
-                    self.written
-                ),
-            });
-        }
-        for (ds, _) in &self.series {
-            ds.resize(records).map_err(&err)?;
-        }
-        for (ds, _) in &self.fields {
-            ds.resize((records, self.n)).map_err(&err)?;
-        }
-        self.modes.0.resize((records, self.n)).map_err(&err)?;
-        self.written = records;
-        self.file.flush().map_err(&err)?;
+        self.sync()?;
+        lock(&self.sink).truncate(records)?;
+        self.queued = records;
         Ok(())
+    }
+}
+
+impl Drop for Recorder {
+    /// Every queued batch reaches the file before the recorder is gone.
+    fn drop(&mut self) {
+        drop(self.jobs.take());
+        if let Some(w) = self.writer.take() {
+            let _ = w.join();
+        }
     }
 }
 
@@ -478,10 +679,12 @@ impl Observer for Recorder {
             ));
         }
         if !restarted {
-            // Self-description: each gauge's arc length, the arc axis of the fields, the conventions.
+            // Self-description: each gauge's arc length, the arc axis of the fields, the
+            // conventions, the dimension scales.
             let path = self.path.clone();
             let err = h5err(&path);
-            let g = self.file.group("dynamic").map_err(&err)?;
+            let sink = lock(&self.sink);
+            let g = sink.file.group("dynamic").map_err(&err)?;
             for (gauge, arc) in ctx.spec.gauges.iter().zip(&self.gauge_arcs) {
                 let one = g.group(&format!("gauges/{}", gauge.name)).map_err(&err)?;
                 num_attr(&one, "arc", *arc).map_err(&err)?;
@@ -491,7 +694,33 @@ impl Observer for Recorder {
             for (k, v) in CONVENTIONS {
                 attr(&g, k, v).map_err(&err)?;
             }
-            drop(g);
+            let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
+            for (name, _) in FIELDS {
+                dims.push((
+                    format!("dynamic/{name}"),
+                    vec![Some("dynamic/time"), Some("dynamic/arc")],
+                ));
+            }
+            dims.push((
+                "dynamic/seabed_mode".into(),
+                vec![Some("dynamic/time"), Some("dynamic/arc")],
+            ));
+            let mut one_d: Vec<String> = SERIES[1..]
+                .iter()
+                .map(|(name, _)| format!("dynamic/{name}"))
+                .collect();
+            for gauge in &ctx.spec.gauges {
+                for what in ["bending_moment", "effective_tension"] {
+                    one_d.push(format!("dynamic/gauges/{}/{what}", gauge.name));
+                }
+            }
+            if self.has_sea {
+                one_d.extend(SEA.iter().map(|(name, _)| format!("dynamic/{name}")));
+            }
+            dims.extend(one_d.into_iter().map(|d| (d, vec![Some("dynamic/time")])));
+            dimension_scales(&sink.file, &dims).map_err(&err)?;
+            sink.file.flush().map_err(&err)?;
+            drop((g, sink));
             let sea = self.sea_values(ctx, first);
             self.push(first.t, first.results, &ctx.model.line.arc, sea)?;
         }
@@ -514,14 +743,14 @@ impl Observer for Recorder {
         _: Option<&catena::observe::Stop>,
     ) -> Result<(), AppError> {
         let t0 = Instant::now();
-        let r = self.flush();
+        let r = self.sync();
         self.busy += t0.elapsed().as_secs_f64();
         r
     }
 
     fn save(&mut self) -> Result<serde_json::Value, AppError> {
-        self.flush()?;
-        Ok(serde_json::json!({ "records": self.written }))
+        self.sync()?;
+        Ok(serde_json::json!({ "records": self.queued }))
     }
 
     fn restore(&mut self, v: &serde_json::Value) -> Result<(), String> {
@@ -531,6 +760,109 @@ impl Observer for Recorder {
         })?;
         self.truncate(records as usize).map_err(|e| e.to_string())
     }
+}
+
+/// A fixed-length, null-terminated ASCII string type of `n` bytes. `H5DSis_scale` (which h5py,
+/// netCDF and xarray call) accepts a `CLASS` attribute only of this kind, and the crate's fixed
+/// strings are null-padded; the crate offers no way to set the padding, hence the one unsafe call.
+#[allow(unsafe_code)]
+fn nullterm_string(n: usize) -> hdf5::Result<hdf5::Datatype> {
+    let dt = hdf5::Datatype::from_descriptor(&hdf5::types::TypeDescriptor::FixedAscii(n))?;
+    let id = dt.id();
+    // SAFETY: `id` is a valid, transient (not committed, not shared) string datatype that `dt`
+    // owns and keeps alive across the call; `H5Tset_strpad` changes only its padding. The call
+    // runs under the crate's global HDF5 lock, as every call of the crate does.
+    let status = hdf5::sync::sync(|| unsafe {
+        hdf5_sys::h5t::H5Tset_strpad(id, hdf5_sys::h5t::H5T_str_t::H5T_STR_NULLTERM)
+    });
+    if status < 0 {
+        return Err("H5Tset_strpad failed".into());
+    }
+    Ok(dt)
+}
+
+/// A reference from a dimension scale back to a dataset dimension it is attached to: an element
+/// of the scale's `REFERENCE_LIST` (HDF5 Dimension Scale specification, 1.0).
+#[derive(hdf5::H5Type, Clone, Copy)]
+#[repr(C)]
+struct ScaleUse {
+    dataset: hdf5::ObjectReference1,
+    dimension: i32,
+}
+
+/// Attaches HDF5 dimension scales, as the HDF5 high-level library's `H5DSset_scale` and
+/// `H5DSattach_scale` would (the Rust crate does not bind that library; this writes the same
+/// attributes, HDF5 Dimension Scale specification 1.0): each scale gets `CLASS =
+/// "DIMENSION_SCALE"`, `NAME` (its last path part) and `REFERENCE_LIST`; each dataset
+/// `DIMENSION_LIST`, one list of scale references per dimension. `datasets` pairs a dataset's path
+/// with the scale of each dimension (`None`: no scale). h5py reads them as `ds.dims[k][0]`.
+pub fn dimension_scales(
+    file: &hdf5::File,
+    datasets: &[(String, Vec<Option<&str>>)],
+) -> hdf5::Result<()> {
+    use hdf5::types::{FixedAscii, VarLenArray};
+    use hdf5::ObjectReference1;
+    let mut uses: Vec<(&str, Vec<ScaleUse>)> = Vec::new();
+    for (path, dims) in datasets {
+        let ds = file.dataset(path)?;
+        let me: ObjectReference1 = file.reference(path)?;
+        let mut list = Vec::with_capacity(dims.len());
+        for (k, scale) in dims.iter().enumerate() {
+            match scale {
+                Some(sc) => {
+                    let r: ObjectReference1 = file.reference(sc)?;
+                    list.push(VarLenArray::from_slice(&[r]));
+                    let u = ScaleUse {
+                        dataset: me,
+                        dimension: k as i32,
+                    };
+                    match uses.iter_mut().find(|(s, _)| s == sc) {
+                        Some((_, v)) => v.push(u),
+                        None => uses.push((sc, vec![u])),
+                    }
+                }
+                None => list.push(VarLenArray::from_slice(&[])),
+            }
+        }
+        if ds.attr("DIMENSION_LIST").is_ok() {
+            ds.delete_attr("DIMENSION_LIST")?;
+        }
+        ds.new_attr::<VarLenArray<ObjectReference1>>()
+            .shape(list.len())
+            .create("DIMENSION_LIST")?
+            .write(&list)?;
+    }
+    let fixed = |s: &str| FixedAscii::<32>::from_ascii(s).unwrap_or_default();
+    let (class_type, name_type) = (nullterm_string(16)?, nullterm_string(32)?);
+    for (sc, mut v) in uses {
+        let ds = file.dataset(sc)?;
+        // Keep the uses attached before (another call, e.g. `/ranges` after `/dynamic`).
+        if let Ok(a) = ds.attr("REFERENCE_LIST") {
+            let before: Vec<ScaleUse> = a.read_raw()?;
+            v.splice(0..0, before);
+        }
+        for name in ["CLASS", "NAME", "REFERENCE_LIST"] {
+            if ds.attr(name).is_ok() {
+                ds.delete_attr(name)?;
+            }
+        }
+        ds.new_attr_builder()
+            .empty_as(class_type.clone())
+            .shape(())
+            .create("CLASS")?
+            .write_scalar(&FixedAscii::<16>::from_ascii("DIMENSION_SCALE").unwrap_or_default())?;
+        let short = sc.rsplit('/').next().unwrap_or(sc);
+        ds.new_attr_builder()
+            .empty_as(name_type.clone())
+            .shape(())
+            .create("NAME")?
+            .write_scalar(&fixed(short))?;
+        ds.new_attr::<ScaleUse>()
+            .shape(v.len())
+            .create("REFERENCE_LIST")?
+            .write(&v)?;
+    }
+    Ok(())
 }
 
 /// Writes `/fatigue/damage_<fibre>` (one value per node, the larger of top and bottom; attributes
@@ -555,6 +887,14 @@ pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), App
                 &format!("damage_{}", fib.name()),
                 &d,
                 "1 (Miner damage of the counted record)",
+            )
+            .map_err(&err)?;
+            dimension_scales(
+                &file,
+                &[(
+                    format!("fatigue/damage_{}", fib.name()),
+                    vec![Some("dynamic/arc")],
+                )],
             )
             .map_err(&err)?;
         }
@@ -595,6 +935,11 @@ pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppE
         vector(&q, "min", &range.min, units).map_err(&err)?;
         vector(&q, "max", &range.max, units).map_err(&err)?;
         vector(&q, "mean", &range.mean(e.samples), units).map_err(&err)?;
+        let dims: Vec<(String, Vec<Option<&str>>)> = ["min", "max", "mean"]
+            .iter()
+            .map(|w| (format!("ranges/{name}/{w}"), vec![Some("dynamic/arc")]))
+            .collect();
+        dimension_scales(&file, &dims).map_err(&err)?;
     }
     file.flush().map_err(&err)?;
     Ok(())
