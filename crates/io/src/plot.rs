@@ -540,8 +540,8 @@ fn marked_panel<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The static configuration: shape, bending moment, effective tension and penetration along the
-/// arc length.
+/// The static configuration: shape (to scale), bending moment, effective tension and penetration
+/// along the arc length, the touchdown point marked, and the touchdown zone (±30 m) zoomed.
 pub fn static_line(
     path: &Path,
     title: &str,
@@ -551,10 +551,10 @@ pub fn static_line(
     init_fonts();
     let err = plot_err(path);
     let perr = plot_err::<String>(path);
-    let root = BitMapBackend::new(path, (1600, 1100)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1600, 1500)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
-    let areas = root.split_evenly((2, 2));
+    let areas = root.split_evenly((3, 2));
     let blue = RGBColor(20, 90, 200);
     let n = arc.len();
     let shape: Vec<(f64, f64)> = (0..n).map(|i| (r.x[i], r.z[i])).collect();
@@ -573,36 +573,76 @@ pub fn static_line(
         &[(mudline, RGBColor(140, 100, 40)), (shape, blue)],
     )
     .map_err(&perr)?;
-    panel(
+    let tdp = catena_fe::statics::touchdown_arc(arc, &r.penetration);
+    let markers: Vec<Marker> = tdp
+        .map(|a| (a, "touchdown point", RGBColor(20, 140, 60)))
+        .into_iter()
+        .collect();
+    let zoom = tdp.map(|a| (a - 30.0, a + 30.0));
+    let xs = "arc length from the top (m)";
+    let one = |points, colour, label| {
+        [Labelled {
+            points,
+            colour,
+            label,
+        }]
+    };
+    let red = RGBColor(180, 30, 30);
+    let green = RGBColor(20, 150, 40);
+    let moment = one(by_arc(&r.moment, 1e-3), red, "static bending moment");
+    let pen: Vec<f64> = r.penetration.iter().map(|p| p.max(0.0)).collect();
+    let pen = one(
+        by_arc(&pen, 1e3),
+        green,
+        "invert penetration (clear drawn at 0)",
+    );
+    legend_panel(
         &areas[1],
         "bending moment (negative = sag)",
-        "arc length from the top (m)",
-        "M (kN·m)",
-        &[(by_arc(&r.moment, 1e-3), RGBColor(180, 30, 30))],
+        (xs, "M (kN·m)"),
+        &moment,
+        &markers,
+        None,
     )
     .map_err(&perr)?;
-    panel(
+    legend_panel(
         &areas[2],
         "effective tension",
-        "arc length from the top (m)",
-        "T (kN)",
-        &[(by_arc(&r.tension, 1e-3), blue)],
+        (xs, "T (kN)"),
+        &one(by_arc(&r.tension, 1e-3), blue, "effective tension"),
+        &markers,
+        None,
     )
     .map_err(&perr)?;
-    panel(
+    legend_panel(
         &areas[3],
         "invert penetration (positive down)",
-        "arc length from the top (m)",
-        "z_pen (mm)",
-        &[(
-            by_arc(
-                &r.penetration.iter().map(|p| p.max(0.0)).collect::<Vec<_>>(),
-                1e3,
-            ),
-            RGBColor(20, 150, 40),
-        )],
+        (xs, "z_pen (mm)"),
+        &pen,
+        &markers,
+        None,
     )
     .map_err(&perr)?;
+    if zoom.is_some() {
+        legend_panel(
+            &areas[4],
+            "touchdown zone (±30 m): bending moment",
+            (xs, "M (kN·m)"),
+            &moment,
+            &markers,
+            zoom,
+        )
+        .map_err(&perr)?;
+        legend_panel(
+            &areas[5],
+            "touchdown zone (±30 m): invert penetration",
+            (xs, "z_pen (mm)"),
+            &pen,
+            &markers,
+            zoom,
+        )
+        .map_err(&perr)?;
+    }
     root.present().map_err(&err)?;
     Ok(())
 }
