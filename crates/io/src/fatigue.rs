@@ -9,6 +9,7 @@ use std::path::Path;
 use catena::study::{annual_damage, shares, StormResult, Study};
 use catena::AppError;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use serde_json::{json, Value};
 
 use crate::h5::{attr, h5err, vector};
@@ -252,30 +253,53 @@ pub fn storms_png(path: &Path, shares: &[(i64, f64)], title: &str) -> Result<(),
     let root = BitMapBackend::new(path, (1400, 700)).into_drawing_area();
     root.fill(&WHITE).map_err(&err)?;
     let n = shares.len().max(1) as i64;
-    let top = shares.iter().map(|s| s.1).fold(0.0, f64::max).max(1e-3) * 1.1 * 100.0;
+    let top = shares.iter().map(|s| s.1).fold(0.0, f64::max).max(1e-3) * 1.15 * 100.0;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 22))
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(0i64..n, 0.0..top)
+        .build_cartesian_2d((0i64..n - 1).into_segmented(), 0.0..top)
         .map_err(|e| perr(e.to_string()))?;
     chart
         .configure_mesh()
-        .x_desc("storm (in the table's order)")
+        .disable_x_mesh()
+        .x_desc("storm id (in the table's order)")
         .y_desc("share of the damage at the critical point (%)")
-        .x_label_formatter(&|i| {
-            shares
+        .x_labels(shares.len().max(1))
+        .x_label_formatter(&|v| match v {
+            SegmentValue::CenterOf(i) => shares
                 .get(*i as usize)
-                .map_or(String::new(), |s| s.0.to_string())
+                .map_or(String::new(), |s| s.0.to_string()),
+            _ => String::new(),
         })
+        .label_style(("sans-serif", 15))
         .draw()
         .map_err(|e| perr(e.to_string()))?;
+    let blue = RGBColor(20, 90, 200);
     chart
         .draw_series(shares.iter().enumerate().map(|(i, s)| {
-            Rectangle::new(
-                [(i as i64, 0.0), (i as i64 + 1, s.1 * 100.0)],
-                RGBColor(20, 90, 200).filled(),
+            let mut bar = Rectangle::new(
+                [
+                    (SegmentValue::Exact(i as i64), 0.0),
+                    (SegmentValue::Exact(i as i64 + 1), s.1 * 100.0),
+                ],
+                blue.filled(),
+            );
+            bar.set_margin(0, 0, 10, 10);
+            bar
+        }))
+        .map_err(|e| perr(e.to_string()))?;
+    // Each bar's share written above it.
+    chart
+        .draw_series(shares.iter().enumerate().map(|(i, s)| {
+            Text::new(
+                format!("{:.1} %", s.1 * 100.0),
+                (SegmentValue::CenterOf(i as i64), s.1 * 100.0 + 0.02 * top),
+                ("sans-serif", 15)
+                    .into_font()
+                    .into_text_style(&root)
+                    .pos(Pos::new(HPos::Center, VPos::Bottom)),
             )
         }))
         .map_err(|e| perr(e.to_string()))?;
