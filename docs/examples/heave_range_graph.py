@@ -23,6 +23,7 @@ import matplotlib.pyplot as plt
 
 fig, ax = plt.subplots(figsize=(8, 4))
 ax.plot(arc, run["ranges/bending_moment/max"] / 1e3, label="maximum")
+ax.plot(arc, run["ranges/bending_moment/mean"] / 1e3, color="0.4", label="mean")
 ax.plot(arc, run["ranges/bending_moment/min"] / 1e3, label="minimum")
 ax.plot(arc, rng / 1e3, "k", label="range")
 ax.axvspan(run.summary["touchdown_arc_min"], run.summary["touchdown_arc_max"], color="0.85",
