@@ -284,7 +284,7 @@ pub fn key_outputs(r: &DynamicRun) -> Vec<f64> {
     let mut v = Vec::new();
     let e = &r.envelopes;
     let arc = &r.model.line.arc;
-    let range = e.moment_range();
+    let range = e.moment.range();
     let has_seabed = r.statics.model.seabed.is_some();
     let zone = if has_seabed {
         touchdown_zone(r)

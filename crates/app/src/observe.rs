@@ -329,8 +329,10 @@ pub struct Envelopes {
     pub touchdown: (f64, f64),
     /// `1/EI` per node (the mean of the adjacent elements' EI).
     inv_ei: Vec<f64>,
-    /// Scratch for a derived quantity, one value per node (allocated once).
+    /// Scratch for the curvature, one value per node (allocated once).
     scratch: Vec<f64>,
+    /// Scratch for wall tension and the two fibre stresses (empty without a section).
+    section_scratch: [Vec<f64>; 3],
     section: Option<crate::fatigue::stress::PipeSection>,
 }
 
@@ -369,6 +371,9 @@ impl Envelopes {
             touchdown: (f64::INFINITY, f64::NEG_INFINITY),
             inv_ei,
             scratch: vec![0.0; n],
+            section_scratch: std::array::from_fn(|_| {
+                vec![0.0; if section.is_some() { n } else { 0 }]
+            }),
             section,
         }
     }
@@ -416,35 +421,18 @@ impl Envelopes {
         }
         self.curvature.take(k);
         if let (Some(sec), Some([wt, top, bottom])) = (&self.section, &mut self.wall) {
-            let (inv_a, r_over_i) = (
-                1.0 / sec.area(),
-                sec.radius(crate::fatigue::stress::Fibre::Outer) / sec.inertia(),
-            );
-            for ((w, t), z) in k.iter_mut().zip(&s.tension).zip(&s.z) {
-                *w = t + sec.wall_minus_effective(*z);
+            let outer = crate::fatigue::stress::Fibre::Outer;
+            let [w, t, b] = &mut self.section_scratch;
+            for i in 0..s.moment.len() {
+                let (te, z) = (s.tension[i], s.z[i]);
+                w[i] = te + sec.wall_minus_effective(z);
+                (t[i], b[i]) = sec.fibre_stresses(outer, te, s.moment[i], z);
             }
-            wt.take(k);
-            for (w, m) in k.iter_mut().zip(&s.moment) {
-                *w = *w * inv_a - m * r_over_i;
-            }
-            top.take(k);
-            // bottom = top + 2 M r/I
-            for (w, m) in k.iter_mut().zip(&s.moment) {
-                *w += 2.0 * m * r_over_i;
-            }
-            bottom.take(k);
+            wt.take(w);
+            top.take(t);
+            bottom.take(b);
         }
         self.samples += 1;
-    }
-
-    /// The moment range at each node.
-    pub fn moment_range(&self) -> Vec<f64> {
-        self.moment.range()
-    }
-
-    /// The tension range at each node.
-    pub fn tension_range(&self) -> Vec<f64> {
-        self.tension.range()
     }
 }
 
@@ -676,6 +664,48 @@ impl Observer for Checkpointer {
     }
 }
 
+/// The series of a recorded step, `(name, units)`, in the order of [`record_series`]: the names of
+/// `results.h5`'s `/dynamic` datasets and of the Python package's arrays.
+pub const RECORD_SERIES: [(&str, &str); 5] = [
+    ("time", "s"),
+    ("top_x", "m"),
+    ("top_z", "m"),
+    ("top_tension", "N"),
+    // The touchdown point's arc length from the top, interpolated where the invert's penetration is
+    // zero (`catena_fe::statics::touchdown_arc`); the anchor's arc length when no node touches down
+    // after a clear one.
+    ("touchdown_arc", "m"),
+];
+
+/// The fields of a recorded step (one value per node), `(name, units)`, in the order of
+/// [`record_fields`].
+pub const RECORD_FIELDS: [(&str, &str); 6] = [
+    ("x", "m"),
+    ("z", "m"),
+    ("effective_tension", "N"),
+    ("bending_moment", "N*m"),
+    ("penetration", "m"),
+    ("seabed_force", "N/m"),
+];
+
+/// The values of [`RECORD_SERIES`] at time `t` for the nodal results `r` on the arc lengths `arc`.
+pub fn record_series(t: f64, arc: &[f64], r: &LineResults) -> [f64; 5] {
+    let tdp = catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
+    [t, r.x[0], r.z[0], r.tension[0], tdp]
+}
+
+/// The values of [`RECORD_FIELDS`] for the nodal results `r`.
+pub fn record_fields(r: &LineResults) -> [&[f64]; 6] {
+    [
+        &r.x,
+        &r.z,
+        &r.tension,
+        &r.moment,
+        &r.penetration,
+        &r.seabed_force,
+    ]
+}
+
 /// The recorded steps (every `output_interval`, and the initial state) kept in memory, with the
 /// names and units of `results.h5`'s `/dynamic` group: what a binding returns instead of a file.
 /// Series, one value per record: `time` (s), `top_x`, `top_z` (m), `top_tension` (N) and
@@ -694,25 +724,12 @@ pub struct Records {
 }
 
 impl Records {
-    /// The series names, in order.
-    pub const SERIES: [&'static str; 5] =
-        ["time", "top_x", "top_z", "top_tension", "touchdown_arc"];
-    /// The field names, in order.
-    pub const FIELDS: [&'static str; 6] = [
-        "x",
-        "z",
-        "effective_tension",
-        "bending_moment",
-        "penetration",
-        "seabed_force",
-    ];
-
     /// Empty records.
     pub fn new() -> Self {
         Self {
             arc: Vec::new(),
-            series: Self::SERIES.iter().map(|n| (*n, Vec::new())).collect(),
-            fields: Self::FIELDS.iter().map(|n| (*n, Vec::new())).collect(),
+            series: RECORD_SERIES.iter().map(|n| (n.0, Vec::new())).collect(),
+            fields: RECORD_FIELDS.iter().map(|n| (n.0, Vec::new())).collect(),
         }
     }
 
@@ -743,24 +760,14 @@ impl Observer for Records {
         if self.arc.is_empty() {
             self.arc = arc.clone();
         }
-        let r = s.results;
-        let tdp =
-            catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
         for ((_, v), x) in self
             .series
             .iter_mut()
-            .zip([s.t, r.x[0], r.z[0], r.tension[0], tdp])
+            .zip(record_series(s.t, arc, s.results))
         {
             v.push(x);
         }
-        for ((_, v), src) in self.fields.iter_mut().zip([
-            &r.x,
-            &r.z,
-            &r.tension,
-            &r.moment,
-            &r.penetration,
-            &r.seabed_force,
-        ]) {
+        for ((_, v), src) in self.fields.iter_mut().zip(record_fields(s.results)) {
             v.extend_from_slice(src);
         }
         Ok(Control::Continue)

@@ -405,7 +405,7 @@ fn each(
 /// Key numbers of a run over its envelope window, from every step: `(largest moment range, its arc
 /// length, top tension minimum, maximum)`; NaN where nothing was measured (no step in the window).
 pub fn key_numbers(r: &DynamicRun) -> (f64, f64, f64, f64) {
-    let range = r.envelopes.moment_range();
+    let range = r.envelopes.moment.range();
     let mut best: Option<(f64, f64)> = None;
     for (i, v) in range.iter().enumerate() {
         if v.is_finite() && best.is_none_or(|b| *v > b.0) {

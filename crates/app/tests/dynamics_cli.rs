@@ -191,7 +191,7 @@ fn slow_heave_is_quasi_static() {
         RunOptions::default(),
     )
     .expect("runs");
-    let dyn_range = r.envelopes.moment_range();
+    let dyn_range = r.envelopes.moment.range();
     let n = dyn_range.len();
     let stat_range: Vec<f64> = (0..n)
         .map(|i| {

@@ -35,7 +35,10 @@ use std::str::FromStr;
 use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use catena::observe::{at_arc, Control, Observer, RunContext, StepView};
+use catena::observe::{
+    at_arc, record_fields, record_series, Control, Observer, RunContext, StepView,
+    RECORD_FIELDS as FIELDS, RECORD_SERIES as SERIES,
+};
 use catena::statics::StaticRun;
 use catena::AppError;
 use catena_fe::assembly::LineResults;
@@ -91,6 +94,7 @@ pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result
     attr(f, "units", "SI: m, N, N·m, N/m, s, rad").map_err(&err)?;
     let g = f.create_group("static").map_err(&err)?;
     let r = &run.results;
+    let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
     for (name, data, units) in [
         ("arc", &run.model.arc, "m"),
         ("x", &r.x, "m"),
@@ -102,19 +106,10 @@ pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result
         ("theta", &r.theta, "rad"),
     ] {
         vector(&g, name, data, units).map_err(&err)?;
+        if name != "arc" {
+            dims.push((format!("static/{name}"), vec![Some("static/arc")]));
+        }
     }
-    let dims: Vec<(String, Vec<Option<&str>>)> = [
-        "x",
-        "z",
-        "effective_tension",
-        "bending_moment",
-        "penetration",
-        "seabed_force",
-        "theta",
-    ]
-    .iter()
-    .map(|d| (format!("static/{d}"), vec![Some("static/arc")]))
-    .collect();
     dimension_scales(f, &dims).map_err(&err)?;
     f.flush().map_err(&err)?;
     Ok(())
@@ -204,10 +199,10 @@ impl Sink {
     }
 }
 
-fn lock(s: &Mutex<Sink>) -> std::sync::MutexGuard<'_, Sink> {
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
     // A panic on the writer thread cannot leave a half-updated Sink that matters: the file is what
     // it wrote, and `written` is updated after the writes.
-    s.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 /// Streams dynamic records into `/dynamic` as an observer of the run: a record at every output
@@ -250,24 +245,6 @@ const SEA: [(&str, &str); 3] = [
     ("top_axial_motion", "m"),
 ];
 
-const SERIES: [(&str, &str); 5] = [
-    ("time", "s"),
-    ("top_x", "m"),
-    ("top_z", "m"),
-    ("top_tension", "N"),
-    // The touchdown point's arc length from the top, interpolated where the invert's penetration is
-    // zero (`catena_fe::statics::touchdown_arc`); the anchor's arc length when no node touches down
-    // after a clear one.
-    ("touchdown_arc", "m"),
-];
-const FIELDS: [(&str, &str); 6] = [
-    ("x", "m"),
-    ("z", "m"),
-    ("effective_tension", "N"),
-    ("bending_moment", "N*m"),
-    ("penetration", "m"),
-    ("seabed_force", "N/m"),
-];
 const FLUSH_EVERY: Duration = Duration::from_secs(1);
 
 /// The sign and axis conventions, written as attributes of `/dynamic`.
@@ -446,7 +423,7 @@ impl Recorder {
             std::thread::Builder::new()
                 .name("catena-hdf5".into())
                 .spawn(move || {
-                    let first = || failed.lock().unwrap_or_else(|p| p.into_inner());
+                    let first = || lock(&failed);
                     for job in rx {
                         match job {
                             // After a failure, batches are dropped: the file keeps what was written.
@@ -498,9 +475,7 @@ impl Recorder {
         sea: Option<[f64; 3]>,
     ) -> Result<(), AppError> {
         let mut k = 0;
-        let tdp =
-            catena_fe::statics::touchdown_arc(arc, &r.penetration).unwrap_or(arc[arc.len() - 1]);
-        for v in [t, r.x[0], r.z[0], r.tension[0], tdp] {
+        for v in record_series(t, arc, r) {
             self.series[k].push(v);
             k += 1;
         }
@@ -515,14 +490,7 @@ impl Recorder {
                 k += 1;
             }
         }
-        for (buf, src) in self.fields.iter_mut().zip([
-            &r.x,
-            &r.z,
-            &r.tension,
-            &r.moment,
-            &r.penetration,
-            &r.seabed_force,
-        ]) {
+        for (buf, src) in self.fields.iter_mut().zip(record_fields(r)) {
             buf.extend_from_slice(src);
         }
         self.modes.extend_from_slice(&r.mode);
@@ -535,8 +503,7 @@ impl Recorder {
 
     /// The writer's first error, as an output error naming the file.
     fn check(&self) -> Result<(), AppError> {
-        let failed = self.failed.lock().unwrap_or_else(|p| p.into_inner());
-        match failed.as_ref() {
+        match lock(&self.failed).as_ref() {
             Some(message) => Err(AppError::Output {
                 path: self.path.clone(),
                 message: message.clone(),

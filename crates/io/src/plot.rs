@@ -860,7 +860,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         &areas[2],
         "bending moment range (max − min)",
         (xs, "ΔM (kN·m)"),
-        &[lab(line(&e.moment_range(), 1e-3), red, "range")],
+        &[lab(line(&e.moment.range(), 1e-3), red, "range")],
         &markers[..1],
         None,
     )

@@ -200,8 +200,8 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
             "moment_max": nums(&e.moment.max),
             "tension_min": nums(&e.tension.min),
             "tension_max": nums(&e.tension.max),
-            "moment_range": nums(&e.moment_range()),
-            "tension_range": nums(&e.tension_range()),
+            "moment_range": nums(&e.moment.range()),
+            "tension_range": nums(&e.tension.range()),
             "penetration_max": nums(&e.penetration.max),
             "penetration_min": nums(&e.penetration.min),
         }
