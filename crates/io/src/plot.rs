@@ -1003,12 +1003,16 @@ fn gauges_pull_up(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             }
         }
         let mut series = vec![(up, RGBColor(200, 30, 30)), (down, RGBColor(20, 90, 200))];
-        if !still.is_empty() {
+        let at_rest = !still.is_empty();
+        if at_rest {
             series.push((still, RGBColor(140, 140, 140)));
         }
         let caption = format!(
-            "{}: gauge {} (arc {:.2} m): red pull-up, blue lay-down",
-            r.statics.scene.title, g.name, g.arc
+            "{}: gauge {} (arc {:.2} m): red pull-up, blue lay-down{}",
+            r.statics.scene.title,
+            g.name,
+            g.arc,
+            if at_rest { ", grey top at rest" } else { "" }
         );
         marked_panel(
             &areas[k],
