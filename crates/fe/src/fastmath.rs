@@ -182,6 +182,54 @@ pub fn exp_nonpositive(x: f64) -> f64 {
     p * f64::from_bits(bits)
 }
 
+/// Lanes of [`lane_sum`] and [`lane_dot`].
+pub const LANES: usize = 8;
+
+/// The eight partial sums of [`lane_sum`] added in a fixed order.
+#[inline(always)]
+pub fn combine_lanes(acc: [f64; LANES]) -> f64 {
+    ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
+}
+
+/// `Σ vᵢ` as eight interleaved partial sums (`vᵢ` into lane `i mod 8`), combined by
+/// [`combine_lanes`]. One running sum is a chain of dependent additions (four cycles each, whatever
+/// the vector width); eight independent lanes fill a vector register, and the compiler may
+/// vectorise them because each lane keeps its own order: the same IEEE operations in the same order
+/// on every processor, so the result is the same to the bit with or without SIMD. (It differs from
+/// the left-to-right sum by rounding only.)
+#[inline(always)]
+pub fn lane_sum(v: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    let mut chunks = v.chunks_exact(LANES);
+    for c in &mut chunks {
+        for j in 0..LANES {
+            acc[j] += c[j];
+        }
+    }
+    for (a, x) in acc.iter_mut().zip(chunks.remainder()) {
+        *a += x;
+    }
+    combine_lanes(acc)
+}
+
+/// `Σ aᵢ bᵢ` in the lanes of [`lane_sum`] (the products rounded, then added lane by lane).
+#[inline(always)]
+pub fn lane_dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0; LANES];
+    let (mut ca, mut cb) = (a.chunks_exact(LANES), b.chunks_exact(LANES));
+    for (x, y) in (&mut ca).zip(&mut cb) {
+        for j in 0..LANES {
+            acc[j] += x[j] * y[j];
+        }
+    }
+    for ((s, x), y) in acc.iter_mut().zip(ca.remainder()).zip(cb.remainder()) {
+        *s += x * y;
+    }
+    combine_lanes(acc)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,5 +310,24 @@ mod tests {
         assert_eq!(exp_nonpositive(0.0), 1.0);
         assert_eq!(exp_nonpositive(-1e6), exp_nonpositive(-708.0));
         assert!(exp_nonpositive(-1e6) < 1e-307);
+    }
+
+    #[test]
+    fn lane_sums_are_sums() {
+        // Exact on integers (every partial sum representable), for every remainder length.
+        for n in 0..40 {
+            let v: Vec<f64> = (0..n).map(|i| (i * i) as f64 - 7.0).collect();
+            let w: Vec<f64> = (0..n).map(|i| 3.0 - i as f64).collect();
+            let sum: f64 = v.iter().sum();
+            let dot: f64 = v.iter().zip(&w).map(|(a, b)| a * b).sum();
+            assert_eq!(lane_sum(&v), sum, "{n}");
+            assert_eq!(lane_dot(&v, &w), dot, "{n}");
+        }
+        // Element 8 goes into lane 0, with element 0, before the lanes are combined: 1 + 1e-16
+        // rounds to 1 there, and cancels with element 1 (left to right it would survive).
+        let mut v = vec![0.0; 9];
+        (v[0], v[1], v[8]) = (1.0, -1.0, 1e-16);
+        assert_eq!(v.iter().sum::<f64>(), 1e-16);
+        assert_eq!(lane_sum(&v), 0.0);
     }
 }

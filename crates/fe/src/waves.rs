@@ -58,7 +58,7 @@ use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::fastmath::{exp_nonpositive, sin_cos};
+use crate::fastmath::{combine_lanes, exp_nonpositive, lane_dot, lane_sum, sin_cos, LANES};
 use crate::motion::quintic_ramp;
 
 /// γ from the sea state by the DNV-RP-C205 rule.
@@ -162,6 +162,8 @@ pub struct Waves {
     eta_bound: f64,
     /// `Σ a_i ω_i`, m/s: the truncation bound (see [`Waves::kinematics`]).
     aw_sum: f64,
+    /// `ln(1e-6·Σ a_i ω_i)`: the truncation tolerance as a logarithm.
+    ln_tol: f64,
     /// The components as columns for the kinematics loops: `s·k`, `k`, `a`, `aω`, `aω²`,
     /// `e^{−2kd}`, `1/(1 − e^{−2kd})` and the truncation bound `ln max_{j≥i} a_j ω_j`.
     cols: Columns,
@@ -279,6 +281,7 @@ impl Waves {
             ramp,
             eta_bound,
             aw_sum,
+            ln_tol: (1e-6 * aw_sum).ln(),
             cols,
             stretch_depth,
         }
@@ -390,24 +393,28 @@ impl Waves {
         if r == 0.0 {
             return 0.0;
         }
-        let mut eta = 0.0;
-        for ((c, ks), a) in self
+        // The lanes of `lane_dot`, in its order: the same elevation as the kinematics' stretching.
+        let mut acc = [0.0; LANES];
+        for (i, ((c, ks), a)) in self
             .components
             .iter()
             .zip(&self.cols.ks)
             .zip(&self.cols.amp)
+            .enumerate()
         {
             let (_, cp) = sin_cos(Self::time_phase(c, t) - ks * x);
-            eta += a * cp;
+            acc[i % LANES] += a * cp;
         }
-        r * eta
+        r * combine_lanes(acc)
     }
 
     /// A scratch for [`Waves::kinematics_with`], sized for this train.
     pub fn scratch(&self) -> WaveScratch {
-        let n = self.components.len();
+        let n = self.cols.k.len();
         WaveScratch {
             t: f64::NAN,
+            n_hint: 0,
+            deep_hint: 0,
             theta: vec![0.0; n],
             sp: vec![0.0; n],
             cp: vec![0.0; n],
@@ -461,23 +468,17 @@ impl Waves {
         let z_up = z + 1.1 * self.eta_bound;
         // The bound tail_max[i]·e^{k_i z'} decreases with i: the first i below tol ends the sum
         // (compared as logarithms: ln tail_max[i] + k_i z' ≥ ln tol).
-        let ln_tol = (1e-6 * self.aw_sum).ln();
+        let ln_tol = self.ln_tol;
+        // Searched from the last node's answer: the nodes of a line come in order, a few
+        // components apart (a bisection's branches were mispredicted half the time).
         let above = |i: usize| self.cols.ln_tail[i] + self.cols.k[i] * z_up >= ln_tol;
-        let (mut lo, mut hi) = (0, self.components.len());
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            if above(mid) {
-                lo = mid + 1;
-            } else {
-                hi = mid;
-            }
-        }
-        let n = lo;
+        let n = first_false(above, sc.n_hint, self.components.len());
+        sc.n_hint = n;
         if n == 0 && z_up < 0.0 {
             // Deep: under water, and every component negligible.
             return Some(Kinematics::default());
         }
-        if sc.theta.len() != self.components.len() {
+        if sc.theta.len() != self.cols.k.len() {
             *sc = self.scratch(); // sized once, on first use
         }
         if sc.t.to_bits() != t.to_bits() {
@@ -493,11 +494,7 @@ impl Waves {
         let eta = if shallow && r != 0.0 {
             let cols = &self.cols;
             sc.phases(cols, x, cols.ks.len());
-            let mut e = 0.0;
-            for (a, cp) in cols.amp.iter().zip(&sc.cp) {
-                e += a * cp;
-            }
-            r * e
+            r * lane_dot(&cols.amp, &sc.cp)
         } else {
             0.0
         };
@@ -509,8 +506,12 @@ impl Waves {
         }
         let zs = (z - eta) * d / (d + eta);
         // Each component's four terms first (a loop without a running sum, which the compiler can
-        // keep in registers and vectorise), then the four sums.
+        // keep in registers and vectorise), then the four sums. The loops run over whole lanes:
+        // the terms past the truncation `n` are computed, then set to zero (the sums are those of
+        // the first `n` terms, to the bit).
         let c = &self.cols;
+        let n_all = n;
+        let n = n.next_multiple_of(LANES);
         if !shallow {
             sc.phases(c, x, n);
         }
@@ -521,21 +522,58 @@ impl Waves {
             &c.aw[..n],
             &c.aw2[..n],
         );
+        // Where `k(z' + d) > 21` the seabed's image term `e^{−k(z'+2d)}` is below 2⁻⁵⁴ of `e^{kz'}`
+        // and vanishes in the roundings of `e^{kz'} ± e^{−k(z'+2d)}`: those components (the
+        // shorter waves, from `deep` on, rounded up to whole lanes) skip it with the same result
+        // to the bit, and without its division.
+        let deep_from = first_false(|j| k[j] * (d + zs) <= 21.0, sc.deep_hint, n);
+        sc.deep_hint = deep_from;
+        let deep = deep_from.next_multiple_of(LANES).min(n);
+        // Each loop's slices cut to its exact length: no bounds checks, so no scalar iterations.
         let (sps, cps) = (&sc.sp[..n], &sc.cp[..n]);
         let [t0, t1, t2, t3] = &mut sc.terms;
         let (t0, t1, t2, t3) = (&mut t0[..n], &mut t1[..n], &mut t2[..n], &mut t3[..n]);
-        for j in 0..n {
-            // e^{kz'} and e^{−k(z'+2d)} = e^{−2kd}/e^{kz'}: one exponential per component.
-            let e1 = exp_nonpositive(k[j] * zs);
-            let e2 = e2kd[j] / e1;
-            let (cz, sz) = ((e1 + e2) * inv_den[j], (e1 - e2) * inv_den[j]);
-            let (sp, cp) = (sps[j], cps[j]);
-            t0[j] = aw[j] * cz * cp;
-            t1[j] = aw[j] * sz * sp;
-            t2[j] = aw2[j] * cz * sp;
-            t3[j] = aw2[j] * sz * cp;
+        {
+            let m = deep;
+            let (k, e2kd, inv_den, aw, aw2) =
+                (&k[..m], &e2kd[..m], &inv_den[..m], &aw[..m], &aw2[..m]);
+            let (sps, cps) = (&sps[..m], &cps[..m]);
+            let (t0, t1, t2, t3) = (&mut t0[..m], &mut t1[..m], &mut t2[..m], &mut t3[..m]);
+            for j in 0..m {
+                // e^{kz'} and e^{−k(z'+2d)} = e^{−2kd}/e^{kz'}: one exponential per component.
+                let e1 = exp_nonpositive(k[j] * zs);
+                let e2 = e2kd[j] / e1;
+                let (cz, sz) = ((e1 + e2) * inv_den[j], (e1 - e2) * inv_den[j]);
+                let (sp, cp) = (sps[j], cps[j]);
+                t0[j] = aw[j] * cz * cp;
+                t1[j] = aw[j] * sz * sp;
+                t2[j] = aw2[j] * cz * sp;
+                t3[j] = aw2[j] * sz * cp;
+            }
         }
-        let sum = |v: &[f64]| v[..n].iter().sum::<f64>();
+        {
+            let (k, inv_den, aw, aw2) = (&k[deep..], &inv_den[deep..], &aw[deep..], &aw2[deep..]);
+            let (sps, cps) = (&sps[deep..], &cps[deep..]);
+            let (t0, t1, t2, t3) = (
+                &mut t0[deep..],
+                &mut t1[deep..],
+                &mut t2[deep..],
+                &mut t3[deep..],
+            );
+            for j in 0..k.len() {
+                let cz = exp_nonpositive(k[j] * zs) * inv_den[j];
+                let (sp, cp) = (sps[j], cps[j]);
+                t0[j] = aw[j] * cz * cp;
+                t1[j] = aw[j] * cz * sp;
+                t2[j] = aw2[j] * cz * sp;
+                t3[j] = aw2[j] * cz * cp;
+            }
+        }
+        // The terms past the truncation are left out (zero in their lanes).
+        for t in [t0, t1, t2, t3] {
+            t[n_all..].fill(0.0);
+        }
+        let sum = |v: &[f64]| lane_sum(&v[..n]);
         let (u, w, ut, wt) = (
             s * sum(&sc.terms[0]),
             -sum(&sc.terms[1]),
@@ -562,11 +600,33 @@ fn kinematics_dispatch(
     w.kinematics_scalar(x, z, t, sc)
 }
 
+/// The first `i < len` where `pred(i)` is false (`len` if none), for a `pred` true then false,
+/// searched from `hint` (up while true, down while the one before is false).
+#[inline(always)]
+fn first_false(pred: impl Fn(usize) -> bool, hint: usize, len: usize) -> usize {
+    let mut i = hint.min(len);
+    if i < len && pred(i) {
+        i += 1;
+        while i < len && pred(i) {
+            i += 1;
+        }
+    } else {
+        while i > 0 && !pred(i - 1) {
+            i -= 1;
+        }
+    }
+    i
+}
+
 /// Per-time scratch for [`Waves::kinematics_with`]: the time phases at the last `t` and, for a
 /// node near the surface, each component's phase sine and cosine.
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {
     t: f64,
+    /// The last node's truncation and its first component without the seabed's image term
+    /// (where the next node's searches start).
+    n_hint: usize,
+    deep_hint: usize,
     theta: Vec<f64>,
     sp: Vec<f64>,
     cp: Vec<f64>,
@@ -609,18 +669,31 @@ impl Columns {
         tail_max: &[f64],
     ) -> Self {
         let s = direction.sign();
+        // Padded to a whole number of lanes with components of zero amplitude (and a truncation
+        // bound no node reaches): the loops then have no scalar remainder.
+        let len = components.len().next_multiple_of(LANES);
+        let pad = |mut v: Vec<f64>, with: f64| {
+            v.resize(len, with);
+            v
+        };
         Self {
-            ln_tail: tail_max.iter().map(|m| m.ln()).collect(),
-            ks: components.iter().map(|c| s * c.k).collect(),
-            k: components.iter().map(|c| c.k).collect(),
-            amp: components.iter().map(|c| c.amplitude).collect(),
-            aw: components.iter().map(|c| c.amplitude * c.omega).collect(),
-            aw2: components
-                .iter()
-                .map(|c| c.amplitude * c.omega * c.omega)
-                .collect(),
-            e2kd: depth_factors.iter().map(|f| f.0).collect(),
-            inv_den: depth_factors.iter().map(|f| f.1).collect(),
+            ln_tail: pad(tail_max.iter().map(|m| m.ln()).collect(), f64::NEG_INFINITY),
+            ks: pad(components.iter().map(|c| s * c.k).collect(), 0.0),
+            k: pad(components.iter().map(|c| c.k).collect(), 0.0),
+            amp: pad(components.iter().map(|c| c.amplitude).collect(), 0.0),
+            aw: pad(
+                components.iter().map(|c| c.amplitude * c.omega).collect(),
+                0.0,
+            ),
+            aw2: pad(
+                components
+                    .iter()
+                    .map(|c| c.amplitude * c.omega * c.omega)
+                    .collect(),
+                0.0,
+            ),
+            e2kd: pad(depth_factors.iter().map(|f| f.0).collect(), 0.0),
+            inv_den: pad(depth_factors.iter().map(|f| f.1).collect(), 0.0),
         }
     }
 }
