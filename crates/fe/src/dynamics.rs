@@ -357,6 +357,13 @@ pub struct DynWorkspace {
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
     /// of the next step of the same Δt).
     factored_dt: Option<f64>,
+    /// The free dofs as runs `(g0, e0, len)`: dofs `g0..g0+len` are equations `e0..e0+len` (the
+    /// Newton loop's vector operations run over these slices, without a lookup per dof).
+    free_runs: Vec<(usize, usize, usize)>,
+    /// The prescribed dofs.
+    fixed: Vec<usize>,
+    /// The residual of every dof (3 per node) before its free equations are taken.
+    g_all: Vec<f64>,
 }
 
 impl DynWorkspace {
@@ -369,7 +376,19 @@ impl DynWorkspace {
             .map_or(SeabedHistory::Linear(Default::default()), |s| {
                 s.seabed.untouched()
             });
+        let mut free_runs: Vec<(usize, usize, usize)> = Vec::new();
+        let mut fixed = Vec::new();
+        for (g, e) in line.equation.iter().enumerate() {
+            match (e, free_runs.last_mut()) {
+                (Some(e), Some((g0, e0, len))) if *g0 + *len == g && *e0 + *len == *e => *len += 1,
+                (Some(e), _) => free_runs.push((g, *e, 1)),
+                (None, _) => fixed.push(g),
+            }
+        }
         Ok(Self {
+            free_runs,
+            fixed,
+            g_all: vec![0.0; 3 * n],
             asm: Assembler::new(line)?,
             mass: vec![[0.0; 4]; n],
             f: vec![0.0; 3 * n],
@@ -641,8 +660,11 @@ fn attempt(
     lump_mass(dm, &state.u, &mut ws.mass);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
-    for g in 0..3 * n {
-        ws.u[g] = state.u[g] + dt * state.v[g] + c_pred * state.a[g];
+    for (u, ((u0, v0), a0)) in
+        ws.u.iter_mut()
+            .zip(state.u.iter().zip(&state.v).zip(&state.a))
+    {
+        *u = u0 + dt * v0 + c_pred * a0;
     }
     let top = dm.top_at(t1);
     let prescribed = top.map(|s| (s.d, s.v, s.a));
@@ -663,22 +685,20 @@ fn attempt(
     let (mut r_prev, mut lambda, mut backtracks) = (f64::INFINITY, 1.0, 0);
     for it in 0..set.max_iter {
         // Kinematics from the Newmark relations; prescribed dofs from the motion.
-        newmark_kinematics(model, state, ws, dt, beta, gamma);
-        for g in 0..3 * n {
-            if model.equation[g].is_none() {
-                let node = g / 3;
-                let k = g % 3;
-                match (&prescribed, node == 0 && k < 2) {
-                    (Some((d, v, a)), true) => {
-                        ws.u[g] = d[k];
-                        ws.v[g] = v[k];
-                        ws.a[g] = a[k];
-                    }
-                    _ => {
-                        ws.u[g] = state.u[g];
-                        ws.v[g] = 0.0;
-                        ws.a[g] = 0.0;
-                    }
+        newmark_kinematics(state, ws, dt, beta, gamma);
+        for &g in &ws.fixed {
+            let node = g / 3;
+            let k = g % 3;
+            match (&prescribed, node == 0 && k < 2) {
+                (Some((d, v, a)), true) => {
+                    ws.u[g] = d[k];
+                    ws.v[g] = v[k];
+                    ws.a[g] = a[k];
+                }
+                _ => {
+                    ws.u[g] = state.u[g];
+                    ws.v[g] = 0.0;
+                    ws.a[g] = 0.0;
                 }
             }
         }
@@ -687,19 +707,30 @@ fn attempt(
         let reuse = it == 0 && ws.factored_dt == Some(dt);
         let lazy = reuse || after_fresh;
         forces_at_iterate(dm, &state.history, ws, !lazy, 1.0 + alpha, c_v, dt);
-        // Residual G = M a + (1+α) F − α F_n on the free equations.
-        for i in 0..n {
-            let m = ws.mass[i];
-            let (ax, az, ar) = (ws.a[3 * i], ws.a[3 * i + 1], ws.a[3 * i + 2]);
-            let inertia = [m[0] * ax + m[1] * az, m[1] * ax + m[2] * az, m[3] * ar];
+        // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
+        for ((((g, m), a), f), f_prev) in ws
+            .g_all
+            .chunks_exact_mut(3)
+            .zip(&ws.mass)
+            .zip(ws.a.chunks_exact(3))
+            .zip(ws.f.chunks_exact(3))
+            .zip(state.f_prev.chunks_exact(3))
+        {
+            let inertia = [
+                m[0] * a[0] + m[1] * a[1],
+                m[1] * a[0] + m[2] * a[1],
+                m[3] * a[2],
+            ];
             for k in 0..3 {
-                let g = 3 * i + k;
-                if let Some(e) = model.equation[g] {
-                    ws.g[e] = inertia[k] + (1.0 + alpha) * ws.f[g] - alpha * state.f_prev[g];
-                }
+                g[k] = inertia[k] + (1.0 + alpha) * f[k] - alpha * f_prev[k];
             }
-            if !lazy {
-                add_mass_tangent(&mut ws.asm, model, i, c_m, m);
+        }
+        for &(g0, e0, len) in &ws.free_runs {
+            ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
+        }
+        if !lazy {
+            for i in 0..n {
+                add_mass_tangent(&mut ws.asm, model, i, c_m, ws.mass[i]);
             }
         }
         // The norm and the worst equation in one pass (its node is looked up only on failure).
@@ -714,9 +745,9 @@ fn attempt(
         if r.is_finite() && r > r_prev && backtracks < MAX_BACKTRACKS {
             // u = u₀ − λ·dq → u₀ − (λ/2)·dq.
             lambda *= 0.5;
-            for (g, e) in model.equation.iter().enumerate() {
-                if let Some(i) = e {
-                    ws.u[g] += lambda * ws.dq[*i];
+            for &(g0, e0, len) in &ws.free_runs {
+                for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
+                    *u += lambda * dq;
                 }
             }
             backtracks += 1;
@@ -760,14 +791,14 @@ fn attempt(
         ws.dq.copy_from_slice(&ws.g);
         ws.asm.solve_tangent(&mut ws.dq);
         let step = ws.dq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (g, e) in model.equation.iter().enumerate() {
-            if let Some(i) = e {
-                ws.u[g] -= ws.dq[*i];
+        for &(g0, e0, len) in &ws.free_runs {
+            for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
+                *u -= dq;
             }
         }
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
-            newmark_kinematics(model, state, ws, dt, beta, gamma);
+            newmark_kinematics(state, ws, dt, beta, gamma);
             forces_at_iterate(dm, &state.history, ws, false, 1.0 + alpha, c_v, dt);
             commit(state, ws, t1);
             return Ok(());
@@ -826,20 +857,22 @@ pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
 }
 
 /// `a_{n+1}` and `v_{n+1}` on the free dofs from the iterate `u_{n+1}` (the Newmark relations).
-fn newmark_kinematics(
-    model: &LineModel,
-    state: &DynState,
-    ws: &mut DynWorkspace,
-    dt: f64,
-    beta: f64,
-    gamma: f64,
-) {
+fn newmark_kinematics(state: &DynState, ws: &mut DynWorkspace, dt: f64, beta: f64, gamma: f64) {
     let c_m = 1.0 / (beta * dt * dt);
-    for (g, e) in model.equation.iter().enumerate() {
-        if e.is_some() {
-            ws.a[g] =
-                c_m * (ws.u[g] - state.u[g] - dt * state.v[g]) - (0.5 / beta - 1.0) * state.a[g];
-            ws.v[g] = state.v[g] + dt * ((1.0 - gamma) * state.a[g] + gamma * ws.a[g]);
+    for &(g0, _, len) in &ws.free_runs {
+        let r = g0..g0 + len;
+        for ((a, v), (u, ((u0, v0), a0))) in
+            ws.a[r.clone()].iter_mut().zip(&mut ws.v[r.clone()]).zip(
+                ws.u[r.clone()].iter().zip(
+                    state.u[r.clone()]
+                        .iter()
+                        .zip(&state.v[r.clone()])
+                        .zip(&state.a[r]),
+                ),
+            )
+        {
+            *a = c_m * (u - u0 - dt * v0) - (0.5 / beta - 1.0) * a0;
+            *v = v0 + dt * ((1.0 - gamma) * a0 + gamma * *a);
         }
     }
 }
