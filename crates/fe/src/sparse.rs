@@ -3,8 +3,9 @@
 //!
 //! **Which solver.** A line's equations numbered node by node couple only within a band of
 //! half-width 5 (two nodes of three unknowns). For such a band, [`BandLdlt`] factors in place
-//! with no permutation, no elimination tree and no index arithmetic in the inner loops:
-//! `n·w²/2` multiply-adds (2577 equations: ~32 000). [`LinearSolver::new`] takes it when the
+//! with no permutation, no elimination tree and no index arithmetic in the inner loops, each
+//! column from its first stored row (its skyline: a node's x, z and θ columns reach 3, 4 and 5 rows
+//! up, not 5 each), about `n·w²/3` multiply-adds (2577 equations: ~21 000). [`LinearSolver::new`] takes it when the
 //! half-width is at most [`BAND_LIMIT`], and faer's simplicial/supernodal LDLᵀ ([`LdltSolver`])
 //! otherwise — for a pattern that is not a narrow band (a future branched or multi-line model),
 //! which is what faer is for. Both give the same solution to rounding (`band_and_sparse_agree`).
@@ -175,7 +176,8 @@ impl LinearSolver {
 }
 
 /// LDLᵀ of a symmetric band matrix, in place (see the module docs). Column `j` of the band holds
-/// rows `j − w ..= j` (the upper triangle): `L_ji` for `i < j`, `D_j` on the diagonal.
+/// rows `j − w ..= j` (the upper triangle): `L_ji` for `i < j`, `D_j` on the diagonal. The loops
+/// start at each column's first stored row (its skyline), not at `j − w`.
 #[derive(Debug, Clone)]
 pub struct BandLdlt {
     n: usize,
@@ -183,6 +185,8 @@ pub struct BandLdlt {
     band: Vec<f64>,
     /// For each value of the sparse pattern, its place in `band`.
     map: Vec<usize>,
+    /// Each column's first row in the pattern (`j − w ≤ first[j] ≤ j`).
+    first: Vec<usize>,
 }
 
 impl BandLdlt {
@@ -190,17 +194,20 @@ impl BandLdlt {
     pub fn new(a: &SparseSym) -> Self {
         let (n, w) = (a.n, a.half_bandwidth());
         let mut map = vec![0; a.values.len()];
+        let mut first = vec![0; n];
         for c in 0..n {
             let (lo, hi) = (a.col_ptr[c], a.col_ptr[c + 1]);
             for (m, r) in map[lo..hi].iter_mut().zip(&a.row_idx[lo..hi]) {
                 *m = c * (w + 1) + (r + w - c);
             }
+            first[c] = a.row_idx[lo..hi].iter().copied().min().unwrap_or(c).min(c);
         }
         Self {
             n,
             w,
             band: vec![0.0; n * (w + 1)],
             map,
+            first,
         }
     }
 
@@ -210,47 +217,48 @@ impl BandLdlt {
         for (v, &m) in a.values.iter().zip(&self.map) {
             self.band[m] = *v;
         }
-        // A beam line's half-width (5) as a constant: the short inner loops unroll and stay in
-        // registers. The same arithmetic in the same order as the general path.
+        // A beam line's half-width (5) as a constant: the column's slices have a known bound.
+        // The same arithmetic in the same order as the general path.
         match self.w {
-            5 => factor_band::<5>(self.n, &mut self.band),
-            w => factor_band_dyn(self.n, w, &mut self.band),
+            5 => factor_band::<5>(&self.first, &mut self.band),
+            w => factor_band_dyn(&self.first, w, &mut self.band),
         }
     }
 
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&self, x: &mut [f64]) {
         match self.w {
-            5 => solve_band::<5>(self.n, &self.band, x),
-            w => solve_band_dyn(self.n, w, &self.band, x),
+            5 => solve_band::<5>(&self.first, &self.band, x),
+            w => solve_band_dyn(&self.first, w, &self.band, x),
         }
     }
 }
 
 /// [`BandLdlt::factor`] for a half-width known at compile time.
-fn factor_band<const W: usize>(n: usize, band: &mut [f64]) -> Result<(), SolveError> {
-    factor_band_dyn(n, W, band)
+fn factor_band<const W: usize>(first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
+    factor_band_dyn(first, W, band)
 }
 
 /// [`BandLdlt::solve_in_place`] for a half-width known at compile time.
-fn solve_band<const W: usize>(n: usize, band: &[f64], x: &mut [f64]) {
-    solve_band_dyn(n, W, band, x)
+fn solve_band<const W: usize>(first: &[usize], band: &[f64], x: &mut [f64]) {
+    solve_band_dyn(first, W, band, x)
 }
 
-/// The band factorisation (see the module docs); `#[inline(always)]` so that a constant `w`
-/// from [`factor_band`] specialises it.
+/// The band factorisation (see the module docs) over each column's skyline: a row above a
+/// column's first stored row stays zero in the factor (no fill above the first nonzero), so
+/// leaving it out changes no value; `#[inline(always)]` so that a constant `w` from
+/// [`factor_band`] specialises it.
 #[inline(always)]
-fn factor_band_dyn(n: usize, w: usize, band: &mut [f64]) -> Result<(), SolveError> {
-    for j in 0..n {
-        let lo = j.saturating_sub(w);
-        // Column j holds rows lo..=j at band[cj + (lo + w − j) ..= cj + w].
+fn factor_band_dyn(first: &[usize], w: usize, band: &mut [f64]) -> Result<(), SolveError> {
+    for (j, &lo) in first.iter().enumerate() {
+        // Column j holds rows j−w..=j at band[cj ..= cj + w]; its skyline starts at row lo.
         let cj = j * (w + 1);
         let (before, col_j) = band.split_at_mut(cj);
         let col_j = &mut col_j[..w + 1];
         let off_j = w - j; // row r of column j is col_j[r + off_j] (r ≥ lo)
-                           // t_i = A_ij − Σ_{k = max(lo, i−w)}^{i−1} L_ik t_k, in place of A_ij.
+                           // t_i = A_ij − Σ_{k = max(lo, first_i)}^{i−1} L_ik t_k, in place of A_ij.
         for i in lo..j {
-            let klo = lo.max(i.saturating_sub(w));
+            let klo = lo.max(first[i]);
             let off_i = i * (w + 1) + w - i; // row r of column i is before[r + off_i]
             let l_i = &before[klo + off_i..i + off_i];
             let t_k = &col_j[klo + off_j..i + off_j];
@@ -275,11 +283,12 @@ fn factor_band_dyn(n: usize, w: usize, band: &mut [f64]) -> Result<(), SolveErro
     Ok(())
 }
 
-/// The band solve; `#[inline(always)]` for the same reason as [`factor_band_dyn`].
+/// The band solve over each column's skyline; `#[inline(always)]` for the same reason as
+/// [`factor_band_dyn`].
 #[inline(always)]
-fn solve_band_dyn(n: usize, w: usize, band: &[f64], x: &mut [f64]) {
-    for j in 0..n {
-        let lo = j.saturating_sub(w);
+fn solve_band_dyn(first: &[usize], w: usize, band: &[f64], x: &mut [f64]) {
+    let n = first.len();
+    for (j, &lo) in first.iter().enumerate() {
         let cj = j * (w + 1) + w - j;
         let l = &band[lo + cj..j + cj];
         let mut s = x[j];
@@ -291,8 +300,7 @@ fn solve_band_dyn(n: usize, w: usize, band: &[f64], x: &mut [f64]) {
     for (j, xj) in x.iter_mut().enumerate().take(n) {
         *xj /= band[j * (w + 1) + w];
     }
-    for j in (0..n).rev() {
-        let lo = j.saturating_sub(w);
+    for (j, &lo) in first.iter().enumerate().rev() {
         let cj = j * (w + 1) + w - j;
         let l = &band[lo + cj..j + cj];
         let xj = x[j];
