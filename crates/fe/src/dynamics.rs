@@ -336,8 +336,6 @@ pub struct DynWorkspace {
     mass: Vec<[f64; 4]>,
     /// Non-inertial forces at the trial, 3 per node.
     pub f: Vec<f64>,
-    /// The trial histories (committed on convergence).
-    pub next: Vec<SeabedHistory>,
     /// Seabed force (resistance, buoyancy and damping) per unit length at the trial, per node.
     pub seabed_force: Vec<f64>,
     g: Vec<f64>,
@@ -392,7 +390,6 @@ impl DynWorkspace {
             asm: Assembler::new(line)?,
             mass: vec![[0.0; 4]; n],
             f: vec![0.0; 3 * n],
-            next: vec![untouched; n],
             seabed_force: vec![0.0; n],
             g: vec![0.0; line.n_eq],
             dq: vec![0.0; line.n_eq],
@@ -496,7 +493,6 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
     ws.v.copy_from_slice(&state.v);
     forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
-    ws.next.copy_from_slice(&state.history);
     lump_mass(dm, &state.u, &mut ws.mass);
     for i in 0..n {
         let m = ws.mass[i];
@@ -520,7 +516,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
 }
 
 /// Assembles the non-inertial forces `F(u, v)` at the workspace's iterate `(ws.u, ws.v)` into
-/// `ws.f` (and the trial histories into `ws.next`); with `with_k`, also `(1+α)(K + c_v·C)` into the
+/// `ws.f`; with `with_k`, also `(1+α)(K + c_v·C)` into the
 /// tangent (`k_scale = 1 + α`). `dt` is the step the seabed laws see.
 #[allow(clippy::needless_range_loop)]
 fn forces_at_iterate(
@@ -546,8 +542,9 @@ fn forces_at_iterate(
     if let Some(sb) = &model.seabed {
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
+            // The trial history `t.next` is not kept: [`commit`] evaluates it again at the
+            // converged iterate (copying it here at every evaluation cost more).
             let t = sb.seabed.evaluate(&committed[i], z, zdot, dt);
-            ws.next[i] = t.next;
             let l = model.tributary[i];
             let up = t.total();
             let mut k = t.tangent;
@@ -768,7 +765,7 @@ fn attempt(
             });
         }
         if r <= set.tol + noise {
-            commit(state, ws, t1);
+            commit(dm, state, ws, t1, dt);
             return Ok(());
         }
         *iterations += 1;
@@ -800,7 +797,7 @@ fn attempt(
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             newmark_kinematics(state, ws, dt, beta, gamma);
             forces_at_iterate(dm, &state.history, ws, false, 1.0 + alpha, c_v, dt);
-            commit(state, ws, t1);
+            commit(dm, state, ws, t1, dt);
             return Ok(());
         }
     }
@@ -877,12 +874,21 @@ fn newmark_kinematics(state: &DynState, ws: &mut DynWorkspace, dt: f64, beta: f6
     }
 }
 
-fn commit(state: &mut DynState, ws: &DynWorkspace, t1: f64) {
+/// Commits the converged iterate: the seabed histories are the trial ones at `(ws.u, ws.v)`,
+/// evaluated again from the committed ones (the same pure evaluation as the iterate's residual,
+/// so the same values).
+fn commit(dm: &DynamicModel, state: &mut DynState, ws: &DynWorkspace, t1: f64, dt: f64) {
+    let (model, pl) = (&dm.line, &dm.placement);
+    if let Some(sb) = &model.seabed {
+        for (i, h) in state.history.iter_mut().enumerate() {
+            let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
+            *h = sb.seabed.evaluate(h, z, zdot, dt).next;
+        }
+    }
     state.u.copy_from_slice(&ws.u);
     state.v.copy_from_slice(&ws.v);
     state.a.copy_from_slice(&ws.a);
     state.f_prev.copy_from_slice(&ws.f);
-    state.history.copy_from_slice(&ws.next);
     state.t = t1;
     state.step += 1;
 }

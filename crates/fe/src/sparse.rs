@@ -180,7 +180,6 @@ impl LinearSolver {
 /// start at each column's first stored row (its skyline), not at `j − w`.
 #[derive(Debug, Clone)]
 pub struct BandLdlt {
-    n: usize,
     w: usize,
     band: Vec<f64>,
     /// For each value of the sparse pattern, its place in `band`.
@@ -203,7 +202,6 @@ impl BandLdlt {
             first[c] = a.row_idx[lo..hi].iter().copied().min().unwrap_or(c).min(c);
         }
         Self {
-            n,
             w,
             band: vec![0.0; n * (w + 1)],
             map,
