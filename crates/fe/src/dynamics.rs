@@ -53,7 +53,9 @@
 //! derivative enters `C`; its dependence on the orientation is left out of the Jacobian.
 //!
 //! **Seabed.** Each node's trial is evaluated from its committed history, its penetration rate and
-//! Δt (pure); the histories are replaced by the trials' `next` only when the step converges. A
+//! Δt (pure); the histories are replaced by the trials' `next` only when the step converges (the
+//! commit evaluates the trials again at the converged iterate rather than keeping them from each
+//! residual evaluation: the same pure call, the same values). A
 //! failed attempt leaves the State untouched, and the step is retried with `Δt/2` (up to `max_cuts`
 //! times). A step that fails after every cut leaves the State exactly as it was before the step
 //! (step-level revert).
