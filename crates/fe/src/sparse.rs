@@ -194,12 +194,12 @@ impl BandLdlt {
         let (n, w) = (a.n, a.half_bandwidth());
         let mut map = vec![0; a.values.len()];
         let mut first = vec![0; n];
-        for c in 0..n {
+        for (c, f) in first.iter_mut().enumerate() {
             let (lo, hi) = (a.col_ptr[c], a.col_ptr[c + 1]);
             for (m, r) in map[lo..hi].iter_mut().zip(&a.row_idx[lo..hi]) {
                 *m = c * (w + 1) + (r + w - c);
             }
-            first[c] = a.row_idx[lo..hi].iter().copied().min().unwrap_or(c).min(c);
+            *f = a.row_idx[lo..hi].iter().copied().min().unwrap_or(c).min(c);
         }
         Self {
             w,
