@@ -429,3 +429,79 @@ fn wave_inertia_is_froude_krylov_plus_normal_added_mass() {
     assert!((along[0] - rho_a_l).abs() < 1e-9 && along[1] == 0.0);
     assert!((across[1] - 2.0 * rho_a_l).abs() < 1e-9 && across[0] == 0.0);
 }
+
+/// Truncation, exactly as documented: a 12 s wave of 1 m and a 4 s wave of 0.1 m in deep water. At
+/// z = −45 m the short wave's bound is above `1e-6·Σaω` and it is summed; at z = −52 m it is below
+/// and left out, although its term (3e-7 m/s) is far above this test's tolerance (1e-9 of the
+/// long wave's `aω`): the kinematics are then the long wave's closed form alone. (Summing the
+/// components past the truncation, e.g. the ones padded to a whole vector lane, fails here.)
+#[test]
+fn truncated_components_are_left_out_exactly() {
+    let comp = |period: f64, amplitude: f64, phase: f64| Component {
+        omega: TAU / period,
+        k: 0.0,
+        amplitude,
+        phase,
+    };
+    let depth = 1000.0;
+    let w = Waves::from_components(
+        vec![comp(12.0, 1.0, 0.3), comp(4.0, 0.1, 1.1)],
+        Direction::PlusX,
+        depth,
+        G,
+        0.0,
+    );
+    let closed = |c: &Component, x: f64, zs: f64, t: f64| {
+        let k = wavenumber(c.omega, depth, G);
+        let ph = c.omega * t - k * x + c.phase;
+        let e = (k * zs).exp();
+        [
+            c.amplitude * c.omega * e * ph.cos(),
+            -c.amplitude * c.omega * e * ph.sin(),
+        ]
+    };
+    let scale = TAU / 12.0;
+    for (z, summed) in [(-45.0, true), (-52.0, false)] {
+        for (x, t) in [(3.0, 1.7), (-20.0, 6.1), (40.0, 11.3)] {
+            let kin = w.kinematics(x, z, t).expect("under water");
+            let eta = w.elevation(x, t);
+            let zs = (z - eta) * depth / (depth + eta);
+            let long = closed(&w.components[0], x, zs, t);
+            let short = closed(&w.components[1], x, zs, t);
+            for j in 0..2 {
+                let expected = long[j] + if summed { short[j] } else { 0.0 };
+                assert!(
+                    (kin.velocity[j] - expected).abs() < 1e-9 * scale,
+                    "z {z}, x {x}, t {t}: {} against {expected}",
+                    kin.velocity[j]
+                );
+            }
+            // The short wave's term is well above the tolerance at both depths.
+            assert!(short[0].abs().max(short[1].abs()) > 1e-7, "{short:?}");
+        }
+    }
+}
+
+/// A scratch kept between calls (the dynamics' way: the truncation is searched from the last
+/// point's) gives the same kinematics, to the bit, as a fresh one, in any order of depths.
+#[test]
+fn a_kept_scratch_changes_nothing() {
+    let w =
+        Waves::jonswap(5.0, 9.9, None, 23, 400, Direction::PlusX, 1000.0, G, 0.0).expect("storm");
+    let mut sc = w.scratch();
+    let mut checked = 0;
+    for i in 0..300 {
+        // Depths jumping up and down between 0 and −700 m.
+        let z = -((i * 137) % 700) as f64 - 0.5;
+        let (x, t) = (900.0 - 0.3 * i as f64, 40.0 + 0.05 * (i / 7) as f64);
+        let kept = w.kinematics_with(x, z, t, &mut sc);
+        let fresh = w.kinematics(x, z, t);
+        assert_eq!(
+            kept.map(|k| [k.velocity, k.acceleration].map(|v| v.map(f64::to_bits))),
+            fresh.map(|k| [k.velocity, k.acceleration].map(|v| v.map(f64::to_bits))),
+            "point {i} at z = {z}"
+        );
+        checked += usize::from(fresh.is_some_and(|k| k.velocity[0] != 0.0));
+    }
+    assert!(checked > 50, "{checked}");
+}
