@@ -655,7 +655,6 @@ fn attempt(
     let (model, set) = (&dm.line, &dm.settings);
     let (alpha, beta, gamma) = set.scheme.coefficients();
     let t1 = state.t + dt;
-    let n = model.nodes();
     lump_mass(dm, &state.u, &mut ws.mass);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
@@ -728,9 +727,7 @@ fn attempt(
             ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
         }
         if !lazy {
-            for i in 0..n {
-                add_mass_tangent(&mut ws.asm, model, i, c_m, ws.mass[i]);
-            }
+            add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         // The norm and the worst equation in one pass (its node is looked up only on failure).
         let (mut sq, mut big, mut worst) = (0.0, 0.0, 0);
@@ -775,9 +772,7 @@ fn attempt(
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
             forces_at_iterate(dm, &state.history, ws, true, 1.0 + alpha, c_v, dt);
-            for i in 0..n {
-                add_mass_tangent(&mut ws.asm, model, i, c_m, ws.mass[i]);
-            }
+            add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         after_fresh = !reuse;
         if !reuse {
@@ -822,10 +817,12 @@ fn worst_node(model: &LineModel, (it, r, eq): (usize, f64, usize)) -> (usize, f6
     (it, r, node)
 }
 
-/// The lumped mass's part of the tangent at node `i`, `c_m·M_i`.
-fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, i: usize, c_m: f64, m: [f64; 4]) {
-    asm.add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
-    asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+/// The lumped mass's part of the tangent, `c_m·M_i` at every node `i`.
+fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f64; 4]]) {
+    for (i, m) in mass.iter().enumerate() {
+        asm.add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
+        asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
+    }
 }
 
 /// A failed attempt: the last iterate's (iteration, relative residual, worst node), and whether
