@@ -18,7 +18,10 @@
 //! reaction, which the caller gives (statics: the residual there; dynamics: the residual plus the
 //! node's inertia). [`Assembler::fill_results`] is the one place that fills [`LineResults`].
 
-use crate::beam::corotational_beam_chord;
+use crate::beam::{
+    corotational_forces_lanes, corotational_tangent_lanes, upper_index, ChordLanes, ForceLanes,
+    ELEMENT_LANES, UPPER_PAIRS,
+};
 use crate::model::LineModel;
 use crate::sparse::{LinearSolver, SolveError, SparseSym};
 
@@ -55,9 +58,10 @@ impl Placement {
     }
 }
 
-/// An element's stored tangent entries: `(local row, local column, value slot)` for its pairs
-/// `(i ≤ j)` of free equations (at most 21), and how many there are.
-type ElemPairs = ([(u8, u8, usize); 21], u8);
+/// An element's stored tangent entries: `(entry of the element's upper triangle (see
+/// [`upper_index`]), value slot)` for its pairs `(i ≤ j)` of free equations (at most 21), and how
+/// many there are.
+type ElemPairs = ([(u8, usize); 21], u8);
 
 /// The structural assembly of one line: pattern, slots, factorisation and element results. Part of
 /// a Workspace: never saved, rebuilt from the Model.
@@ -81,6 +85,8 @@ pub struct Assembler {
     /// The tangent values of the last factorisation (kept so that a checkpoint can restore the
     /// factorisation bit for bit).
     factored: Vec<f64>,
+    /// Per element `(L0, EA/L0, EI/L0)`, the quotients the element kernel forms.
+    stiffness_per_length: Vec<(f64, f64, f64)>,
 }
 
 impl Assembler {
@@ -99,14 +105,16 @@ impl Assembler {
             }
         }
         let k = SparseSym::from_couplings(model.n_eq, pairs);
-        let mut elem_pairs = vec![([(0u8, 0u8, 0usize); 21], 0u8); ne];
+        let mut elem_pairs = vec![([(0u8, 0usize); 21], 0u8); ne];
         for (e, (pairs, len)) in elem_pairs.iter_mut().enumerate() {
             for a in 0..6 {
                 for b in 0..6 {
                     if let (Some(i), Some(j)) = (eq(3 * e + a), eq(3 * e + b)) {
                         if i <= j {
                             if let Some(s) = k.slot(i, j) {
-                                pairs[*len as usize] = (a as u8, b as u8, s);
+                                // Equations are numbered in dof order, so a ≤ b.
+                                debug_assert!(a <= b);
+                                pairs[*len as usize] = (upper_index(a, b) as u8, s);
                                 *len += 1;
                             }
                         }
@@ -136,6 +144,11 @@ impl Assembler {
             axial: vec![0.0; ne],
             moments: vec![(0.0, 0.0); ne],
             factored: vec![0.0; nnz],
+            stiffness_per_length: model
+                .elements
+                .iter()
+                .map(|el| (el.l0, el.section.ea / el.l0, el.section.ei / el.l0))
+                .collect(),
         })
     }
 
@@ -155,33 +168,11 @@ impl Assembler {
         self.residual.fill(0.0);
         if with_k {
             self.k.clear();
+            self.assemble_elements_with_tangent(pl, u);
+        } else {
+            self.assemble_element_forces(pl, u);
         }
         let q = &pl.base;
-        for (e, el) in model.elements.iter().enumerate() {
-            let b = 3 * e;
-            let [cx, cz] = pl.chords[e];
-            let r = corotational_beam_chord(
-                cx + (u[b + 3] - u[b]),
-                cz + (u[b + 4] - u[b + 1]),
-                q[b + 2] + u[b + 2],
-                q[b + 5] + u[b + 5],
-                el.l0,
-                &el.section,
-                with_k,
-            );
-            for a in 0..6 {
-                self.residual[b + a] += r.force[a];
-            }
-            self.axial[e] = r.axial;
-            self.moments[e] = (r.moment1, r.moment2);
-            if with_k {
-                // The stored (upper-triangle) entries only, from the precomputed list.
-                let (pairs, len) = &self.elem_pairs[e];
-                for &(a, c, s) in &pairs[..*len as usize] {
-                    self.k.values[s] += r.stiffness[a as usize][c as usize];
-                }
-            }
-        }
         for (g, f) in model.dead_load.iter().enumerate() {
             self.residual[g] -= f;
         }
@@ -194,6 +185,92 @@ impl Assembler {
                 }
             }
         }
+    }
+
+    /// The elements' forces, [`ELEMENT_LANES`] elements at a time
+    /// ([`corotational_forces_lanes`]: the same values as element by element), added to the
+    /// residual in element order.
+    fn assemble_element_forces(&mut self, pl: &Placement, u: &[f64]) {
+        const L: usize = ELEMENT_LANES;
+        let ne = self.axial.len();
+        let mut inp = ChordLanes::<L>::default();
+        let mut out = ForceLanes::<L>::default();
+        for e0 in (0..ne).step_by(L) {
+            let m = self.gather_chords(pl, u, e0, &mut inp);
+            corotational_forces_lanes(&inp, &mut out);
+            for k in 0..m {
+                self.add_element_forces(e0 + k, k, &out);
+            }
+        }
+    }
+
+    /// The elements' forces and tangents, [`ELEMENT_LANES`] elements at a time
+    /// ([`corotational_tangent_lanes`]), added in element order.
+    #[allow(clippy::needless_range_loop)]
+    fn assemble_elements_with_tangent(&mut self, pl: &Placement, u: &[f64]) {
+        const L: usize = ELEMENT_LANES;
+        let ne = self.axial.len();
+        let mut inp = ChordLanes::<L>::default();
+        let mut out = ForceLanes::<L>::default();
+        let mut kl = [[0.0; L]; 21];
+        for e0 in (0..ne).step_by(L) {
+            let m = self.gather_chords(pl, u, e0, &mut inp);
+            corotational_tangent_lanes(&inp, &mut out, &mut kl);
+            for k in 0..m {
+                let e = e0 + k;
+                self.add_element_forces(e, k, &out);
+                // The stored (upper-triangle) entries only, from the precomputed list.
+                let (pairs, len) = &self.elem_pairs[e];
+                for &(t, s) in &pairs[..*len as usize] {
+                    self.k.values[s] += kl[t as usize][k];
+                }
+            }
+        }
+    }
+
+    /// Elements `e0..` (up to [`ELEMENT_LANES`] of them) into `inp`; returns how many there are
+    /// (lanes past the last element get a harmless unit element, never added).
+    #[inline(always)]
+    fn gather_chords<const L: usize>(
+        &self,
+        pl: &Placement,
+        u: &[f64],
+        e0: usize,
+        inp: &mut ChordLanes<L>,
+    ) -> usize {
+        let q = &pl.base;
+        let m = L.min(self.axial.len() - e0);
+        for k in 0..L {
+            let e = e0 + k.min(m - 1);
+            let b = 3 * e;
+            let [cx, cz] = pl.chords[e];
+            (inp.l0[k], inp.ka[k], inp.kb[k]) = self.stiffness_per_length[e];
+            if k < m {
+                inp.dx[k] = cx + (u[b + 3] - u[b]);
+                inp.dz[k] = cz + (u[b + 4] - u[b + 1]);
+                inp.theta1[k] = q[b + 2] + u[b + 2];
+                inp.theta2[k] = q[b + 5] + u[b + 5];
+            } else {
+                (inp.dx[k], inp.dz[k], inp.theta1[k], inp.theta2[k]) = (inp.l0[k], 0.0, 0.0, 0.0);
+            }
+        }
+        m
+    }
+
+    /// Element `e`'s forces (lane `k` of `out`) into the residual, and its axial force and end
+    /// moments.
+    #[inline(always)]
+    fn add_element_forces<const L: usize>(&mut self, e: usize, k: usize, out: &ForceLanes<L>) {
+        let b = 3 * e;
+        let r = &mut self.residual[b..b + 6];
+        r[0] += -out.f3[k];
+        r[1] += -out.f4[k];
+        r[2] += out.f2[k];
+        r[3] += out.f3[k];
+        r[4] += out.f4[k];
+        r[5] += out.f5[k];
+        self.axial[e] = out.axial[k];
+        self.moments[e] = (out.m1[k], out.m2[k]);
     }
 
     /// Adds stiffness-proportional structural damping `β·Bᵀ K_l B·v` of every element
@@ -229,8 +306,9 @@ impl Assembler {
             }
             if with_c {
                 let (pairs, len) = &self.elem_pairs[e];
-                for &(a, c, s) in &pairs[..*len as usize] {
-                    self.k.values[s] += c_scale * d.damping[a as usize][c as usize];
+                for &(t, s) in &pairs[..*len as usize] {
+                    let (a, c) = UPPER_PAIRS[t as usize];
+                    self.k.values[s] += c_scale * d.damping[a][c];
                 }
             }
         }

@@ -33,6 +33,12 @@
 //! is `M(0) = −M1` at end 1 and `M(1) = M2` at end 2, with `M = EI·dθ/ds`. With the nodes numbered from
 //! the top of a riser, a sag bend (concave up) has `dθ/ds < 0`, so its moment is negative, the paper's
 //! convention.
+//!
+//! **Lanes.** [`corotational_forces_lanes`] and [`corotational_tangent_lanes`] evaluate
+//! [`ELEMENT_LANES`] elements at once (the assembly's path), in loops over the lanes that the
+//! compiler turns into vector instructions: the same operations in the same order as
+//! [`corotational_beam_chord`], so the same values to the bit (tested), with the arctangent's
+//! reductions and the angle wrap chosen by selects instead of branches.
 
 /// Section properties of an element.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -160,6 +166,26 @@ pub fn wrap(a: f64) -> f64 {
     w
 }
 
+/// [`wrap`] without branches for `|a| < 4π` (the caller checks): `a mod 2π` is then `a` or
+/// `a ∓ 2π`, and `a ∓ 2π` is exact for `2π ≤ |a| < 4π` (Sterbenz), as the remainder is; the
+/// same value as [`wrap`] to the bit.
+#[inline(always)]
+fn wrap_near(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let w = if a.abs() >= TAU {
+        a - TAU.copysign(a)
+    } else {
+        a
+    };
+    if w > PI {
+        w - TAU
+    } else if w <= -PI {
+        w + TAU
+    } else {
+        w
+    }
+}
+
 /// The element response at the nodal values `d = (x1, z1, θ1, x2, z2, θ2)`. Pure; allocates nothing.
 /// `with_stiffness = false` skips the 6×6 tangent (it is then zero).
 #[inline]
@@ -193,13 +219,33 @@ pub fn corotational_beam_chord(
     sec: &Section,
     with_stiffness: bool,
 ) -> BeamResponse {
+    corotational_beam_chord_k(
+        dx,
+        dz,
+        theta1,
+        theta2,
+        l0,
+        (sec.ea / l0, sec.ei / l0),
+        with_stiffness,
+    )
+}
+
+/// [`corotational_beam_chord`] with `(EA/L0, EI/L0)` given (as the caller may keep them).
+#[inline]
+pub fn corotational_beam_chord_k(
+    dx: f64,
+    dz: f64,
+    theta1: f64,
+    theta2: f64,
+    l0: f64,
+    (ka, kb): (f64, f64),
+    with_stiffness: bool,
+) -> BeamResponse {
     let Basis { l, r, q, b1, b2 } = basis(dx, dz);
     let beta = crate::fastmath::atan2(dz, dx);
     let t1 = wrap(theta1 - beta);
     let t2 = wrap(theta2 - beta);
     let u = l - l0;
-    let ka = sec.ea / l0;
-    let kb = sec.ei / l0;
     let n = ka * u;
     let m1 = kb * (4.0 * t1 + 2.0 * t2);
     let m2 = kb * (2.0 * t1 + 4.0 * t2);
@@ -235,6 +281,227 @@ pub fn corotational_beam_chord(
         moment1: -m1,
         moment2: m2,
         chord_angle: beta,
+    }
+}
+
+/// Elements of one pass of [`corotational_forces_lanes`].
+pub const ELEMENT_LANES: usize = 4;
+
+/// Inputs of [`corotational_forces_lanes`] for `L` elements: the chords, the end angles, and
+/// `L0`, `EA/L0` and `EI/L0` (each the quotient [`corotational_beam_chord`] forms).
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)]
+pub struct ChordLanes<const L: usize> {
+    pub dx: [f64; L],
+    pub dz: [f64; L],
+    pub theta1: [f64; L],
+    pub theta2: [f64; L],
+    pub l0: [f64; L],
+    pub ka: [f64; L],
+    pub kb: [f64; L],
+}
+
+/// The forces of `L` elements from [`corotational_forces_lanes`]: `force[0..6]` of
+/// [`BeamResponse`] are `(−f3, −f4, f2, f3, f4, f5)`, and `(N, −M1, M2)` its
+/// `(axial, moment1, moment2)`.
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)]
+pub struct ForceLanes<const L: usize> {
+    pub f2: [f64; L],
+    pub f3: [f64; L],
+    pub f4: [f64; L],
+    pub f5: [f64; L],
+    pub axial: [f64; L],
+    pub m1: [f64; L],
+    pub m2: [f64; L],
+}
+
+impl<const L: usize> Default for ChordLanes<L> {
+    fn default() -> Self {
+        Self {
+            dx: [1.0; L],
+            dz: [0.0; L],
+            theta1: [0.0; L],
+            theta2: [0.0; L],
+            l0: [1.0; L],
+            ka: [0.0; L],
+            kb: [0.0; L],
+        }
+    }
+}
+
+impl<const L: usize> Default for ForceLanes<L> {
+    fn default() -> Self {
+        Self {
+            f2: [0.0; L],
+            f3: [0.0; L],
+            f4: [0.0; L],
+            f5: [0.0; L],
+            axial: [0.0; L],
+            m1: [0.0; L],
+            m2: [0.0; L],
+        }
+    }
+}
+
+/// The forces of [`corotational_beam_chord`] (without the tangent) for `L` elements at once, in
+/// loops over the lanes that the compiler vectorises: the residual-only evaluations of a Newton
+/// step are two thirds of them, and element by element the kernel's divisions, square root and
+/// arctangent run one at a time.
+///
+/// **Same values to the bit** as [`corotational_beam_chord`]: the same operations in the same
+/// order. With `s_l = s/L` and `c_l = c/L` (so `b1 = (−s_l, c_l, 1, s_l, −c_l, −0)` and
+/// `b2 = (−s_l, c_l, −0, s_l, −c_l, 1)`),
+///
+/// ```text
+/// f3 = (c·N + s_l·M1) + s_l·M2      f0 = −f3   (the same sums with every term negated)
+/// f4 = (s·N − c_l·M1) − c_l·M2      f1 = −f4
+/// f2 = (0·N + M1) + (−0)·M2         f5 = (0·N + (−0)·M1) + M2
+/// ```
+///
+/// A lane where the arctangent or the angle wrap leaves its common path (a vertical or
+/// degenerate chord, an end rotation past ±π, a NaN) is computed again by
+/// [`corotational_beam_chord`].
+#[inline(always)]
+#[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+pub fn corotational_forces_lanes<const L: usize>(
+    inp: &ChordLanes<L>,
+    out: &mut ForceLanes<L>,
+) -> bool {
+    use std::f64::consts::TAU;
+    let mut beta = [0.0; L];
+    let mut special = crate::fastmath::atan2_lanes(&inp.dz, &inp.dx, &mut beta);
+    for k in 0..L {
+        let (dx, dz) = (inp.dx[k], inp.dz[k]);
+        let l = (dx * dx + dz * dz).sqrt();
+        let c = dx / l;
+        let s = dz / l;
+        let (t1, t2) = (inp.theta1[k] - beta[k], inp.theta2[k] - beta[k]);
+        special |= !(t1.abs() < 2.0 * TAU && t2.abs() < 2.0 * TAU);
+        let (t1, t2) = (wrap_near(t1), wrap_near(t2));
+        let n = inp.ka[k] * (l - inp.l0[k]);
+        let m1 = inp.kb[k] * (4.0 * t1 + 2.0 * t2);
+        let m2 = inp.kb[k] * (2.0 * t1 + 4.0 * t2);
+        let (sl, cl) = (s / l, c / l);
+        out.f2[k] = (0.0 * n + m1) + (-0.0) * m2;
+        out.f3[k] = (c * n + sl * m1) + sl * m2;
+        out.f4[k] = (s * n + (-cl) * m1) + (-cl) * m2;
+        out.f5[k] = (0.0 * n + (-0.0) * m1) + m2;
+        out.axial[k] = n;
+        out.m1[k] = -m1;
+        out.m2[k] = m2;
+    }
+    if special {
+        // Rare: every lane again, element by element (a common lane gives the same values).
+        for k in 0..L {
+            let r = corotational_beam_chord_k(
+                inp.dx[k],
+                inp.dz[k],
+                inp.theta1[k],
+                inp.theta2[k],
+                inp.l0[k],
+                (inp.ka[k], inp.kb[k]),
+                false,
+            );
+            out.f2[k] = r.force[2];
+            out.f3[k] = r.force[3];
+            out.f4[k] = r.force[4];
+            out.f5[k] = r.force[5];
+            out.axial[k] = r.axial;
+            out.m1[k] = r.moment1;
+            out.m2[k] = r.moment2;
+        }
+    }
+    special
+}
+
+/// The position of the entry `(i, j)`, `i ≤ j`, of a symmetric 6×6 matrix in its upper triangle
+/// stored by rows (21 entries).
+pub const fn upper_index(i: usize, j: usize) -> usize {
+    6 * i - (i * i.saturating_sub(1)) / 2 + j - i
+}
+
+/// The `(i, j)` of each entry of [`upper_index`].
+pub const UPPER_PAIRS: [(usize, usize); 21] = {
+    let mut p = [(0, 0); 21];
+    let mut i = 0;
+    while i < 6 {
+        let mut j = i;
+        while j < 6 {
+            p[upper_index(i, j)] = (i, j);
+            j += 1;
+        }
+        i += 1;
+    }
+    p
+};
+
+/// [`corotational_forces_lanes`] and the tangent: `k[upper_index(i, j)]` is
+/// [`BeamResponse::stiffness`]`[i][j]` (`i ≤ j`) of each element, to the bit (the same sums, from
+/// `r`, `q`, `b1`, `b2` as in the module docs, with their zeros and ones).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)]
+pub fn corotational_tangent_lanes<const L: usize>(
+    inp: &ChordLanes<L>,
+    out: &mut ForceLanes<L>,
+    kout: &mut [[f64; L]; 21],
+) {
+    if corotational_forces_lanes(inp, out) {
+        for k in 0..L {
+            let r = corotational_beam_chord_k(
+                inp.dx[k],
+                inp.dz[k],
+                inp.theta1[k],
+                inp.theta2[k],
+                inp.l0[k],
+                (inp.ka[k], inp.kb[k]),
+                true,
+            );
+            for i in 0..6 {
+                for j in i..6 {
+                    kout[upper_index(i, j)][k] = r.stiffness[i][j];
+                }
+            }
+        }
+        return;
+    }
+    let mut r = [[0.0; L]; 6];
+    let mut q = [[0.0; L]; 6];
+    let mut b1 = [[0.0; L]; 6];
+    let mut b2 = [[0.0; L]; 6];
+    let (mut gq, mut gm, mut kb) = ([0.0; L], [0.0; L], [0.0; L]);
+    for k in 0..L {
+        let (dx, dz) = (inp.dx[k], inp.dz[k]);
+        let l = (dx * dx + dz * dz).sqrt();
+        let c = dx / l;
+        let s = dz / l;
+        let (sl, cl) = (s / l, c / l);
+        let (m1, m2) = (-out.m1[k], out.m2[k]);
+        [r[0][k], r[1][k], r[2][k], r[3][k], r[4][k], r[5][k]] = [-c, -s, 0.0, c, s, 0.0];
+        [q[0][k], q[1][k], q[2][k], q[3][k], q[4][k], q[5][k]] = [s, -c, 0.0, -s, c, 0.0];
+        // −q/L, plus e3 (b1) or e6 (b2): −0/L = −0 for L > 0, and −0 + 1 = 1.
+        [b1[0][k], b1[1][k], b1[2][k], b1[3][k], b1[4][k], b1[5][k]] =
+            [-sl, cl, 1.0, sl, -cl, -0.0];
+        [b2[0][k], b2[1][k], b2[2][k], b2[3][k], b2[4][k], b2[5][k]] =
+            [-sl, cl, -0.0, sl, -cl, 1.0];
+        gq[k] = out.axial[k] / l;
+        gm[k] = (m1 + m2) / (l * l);
+        kb[k] = inp.kb[k];
+    }
+    for i in 0..6 {
+        for j in i..6 {
+            let dst = &mut kout[upper_index(i, j)];
+            for k in 0..L {
+                let (k11, k12, k22) = (4.0 * kb[k], 2.0 * kb[k], 4.0 * kb[k]);
+                let a1 = k11 * b1[i][k] + k12 * b2[i][k];
+                let a2 = k12 * b1[i][k] + k22 * b2[i][k];
+                dst[k] = inp.ka[k] * r[i][k] * r[j][k]
+                    + a1 * b1[j][k]
+                    + a2 * b2[j][k]
+                    + gq[k] * q[i][k] * q[j][k]
+                    + gm[k] * (r[i][k] * q[j][k] + q[i][k] * r[j][k]);
+            }
+        }
     }
 }
 
@@ -385,6 +652,111 @@ mod tests {
                 ((w - a) / std::f64::consts::TAU).fract().abs() < 1e-12
                     || ((w - a) / std::f64::consts::TAU).fract().abs() > 1.0 - 1e-12
             );
+        }
+    }
+
+    /// A small deterministic generator for the lanes tests (uniform in [0, 1)).
+    fn uniform(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// The lanes kernels give [`corotational_beam_chord_k`]'s forces, axial force, end moments and
+    /// tangent to the bit, on chords in every quadrant (every reduction of the arctangent), chords
+    /// pointing along −x with dz of either sign (the chord angle jumps between ±π there, as on a
+    /// seabed laid from the top: the end rotations then need the wrap), end angles up to 5π away
+    /// (past the lanes' wrap: the element-by-element fallback), vertical and zero chords.
+    #[test]
+    fn lanes_give_the_element_kernel_to_the_bit() {
+        use std::f64::consts::PI;
+        const L: usize = ELEMENT_LANES;
+        let mut rng = 7u64;
+        let mut cases = Vec::new();
+        for n in 0..4000 {
+            let ang = match n % 4 {
+                0 => (2.0 * uniform(&mut rng) - 1.0) * PI,
+                1 => PI - 1e-6 * (2.0 * uniform(&mut rng) - 1.0),
+                2 => 0.5 * PI * (n % 3) as f64,
+                _ => 20.0 * (uniform(&mut rng) - 0.5),
+            };
+            let len = 4.0 * (1.0 + 0.01 * (uniform(&mut rng) - 0.5));
+            let (dx, dz) = if n % 97 == 0 {
+                (0.0, 0.0)
+            } else {
+                (len * ang.cos(), len * ang.sin())
+            };
+            let spread = if n % 5 == 0 { 5.0 * PI } else { 0.2 };
+            let th1 = ang + spread * (2.0 * uniform(&mut rng) - 1.0);
+            let th2 = ang + spread * (2.0 * uniform(&mut rng) - 1.0);
+            cases.push((dx, dz, th1, th2));
+        }
+        let (l0, ka, kb) = (4.0, SEC.ea / 4.0, SEC.ei / 4.0);
+        let (mut fallback, mut wrapped) = (0, 0);
+        for chunk in cases.chunks(L) {
+            let mut inp = ChordLanes::<L>::default();
+            for (k, &(dx, dz, th1, th2)) in chunk.iter().enumerate() {
+                (inp.dx[k], inp.dz[k], inp.theta1[k], inp.theta2[k]) = (dx, dz, th1, th2);
+                (inp.l0[k], inp.ka[k], inp.kb[k]) = (l0, ka, kb);
+            }
+            let mut only_forces = ForceLanes::<L>::default();
+            let mut out = ForceLanes::<L>::default();
+            let mut kl = [[0.0; L]; 21];
+            if corotational_forces_lanes(&inp, &mut only_forces) {
+                fallback += 1;
+            }
+            corotational_tangent_lanes(&inp, &mut out, &mut kl);
+            for (k, &(dx, dz, th1, th2)) in chunk.iter().enumerate() {
+                let beta = crate::fastmath::atan2(dz, dx);
+                if !(-PI..=PI).contains(&(th1 - beta)) {
+                    wrapped += 1;
+                }
+                let r = corotational_beam_chord_k(dx, dz, th1, th2, l0, (ka, kb), true);
+                for o in [&only_forces, &out] {
+                    let got = [
+                        -o.f3[k], -o.f4[k], o.f2[k], o.f3[k], o.f4[k], o.f5[k], o.axial[k],
+                        o.m1[k], o.m2[k],
+                    ];
+                    let want = [
+                        r.force[0], r.force[1], r.force[2], r.force[3], r.force[4], r.force[5],
+                        r.axial, r.moment1, r.moment2,
+                    ];
+                    for (g, w) in got.iter().zip(&want) {
+                        assert!(
+                            g.to_bits() == w.to_bits() || (g.is_nan() && w.is_nan()),
+                            "chord ({dx}, {dz}), angles ({th1}, {th2}): {got:?} against {want:?}"
+                        );
+                    }
+                }
+                for (t, &(i, j)) in UPPER_PAIRS.iter().enumerate() {
+                    let (g, w) = (kl[t][k], r.stiffness[i][j]);
+                    assert!(
+                        g.to_bits() == w.to_bits() || (g.is_nan() && w.is_nan()),
+                        "K[{i}][{j}] of chord ({dx}, {dz}), angles ({th1}, {th2}): {g} against {w}"
+                    );
+                }
+            }
+        }
+        // Both paths were taken: most chunks in lanes (wrapped angles included), some by the
+        // fallback.
+        assert!(wrapped > 500, "{wrapped} wrapped angles");
+        assert!(
+            fallback > 50 && fallback < 700,
+            "{fallback} of 1000 chunks fell back"
+        );
+    }
+
+    /// [`upper_index`] numbers the 21 entries of the upper triangle by rows.
+    #[test]
+    fn upper_index_numbers_the_upper_triangle_by_rows() {
+        let mut t = 0;
+        for i in 0..6 {
+            for j in i..6 {
+                assert_eq!(upper_index(i, j), t);
+                assert_eq!(UPPER_PAIRS[t], (i, j));
+                t += 1;
+            }
         }
     }
 }

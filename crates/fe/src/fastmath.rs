@@ -148,6 +148,83 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     }
 }
 
+/// [`atan2`] of `L` pairs at once, without branches (the five reductions of [`atan`] chosen by
+/// selects, so that the loops vectorise): the same operations in the same order as [`atan2`], so
+/// the same values to the bit, wherever [`atan2`] takes its common path. Lanes where it does not
+/// (`x = 0`, a NaN, `|y/x| ≥ 2⁶⁶`) are flagged in the returned mask for the caller to redo with
+/// [`atan2`].
+#[inline(always)]
+// A NaN must count as special: hence `!(a < b)`, not `a >= b`.
+#[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L], out: &mut [f64; L]) -> bool {
+    use std::f64::consts::PI;
+    const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
+    const HI: [f64; 4] = [
+        4.636_476_090_008_061e-1,
+        std::f64::consts::FRAC_PI_4,
+        9.827_937_232_473_29e-1,
+        std::f64::consts::FRAC_PI_2,
+    ];
+    const LO: [f64; 4] = [
+        2.269_877_745_296_168_7e-17,
+        3.061_616_997_868_383e-17,
+        1.390_331_103_123_099_8e-17,
+        6.123_233_995_736_766e-17,
+    ];
+    const AT: [f64; 11] = [
+        3.333_333_333_333_293e-1,
+        -1.999_999_999_987_648_3e-1,
+        1.428_571_427_250_346_6e-1,
+        -1.111_111_040_546_235_6e-1,
+        9.090_887_133_436_507e-2,
+        -7.691_876_205_044_83e-2,
+        6.661_073_137_387_531e-2,
+        -5.833_570_133_790_573e-2,
+        4.976_877_994_615_932e-2,
+        -3.653_157_274_421_691_6e-2,
+        1.628_582_011_536_578_2e-2,
+    ];
+    let mut special = false;
+    for k in 0..L {
+        let (yk, xk) = (y[k], x[k]);
+        let a = (yk / xk).abs();
+        // `!(a < 2⁶⁶)` also catches a NaN (from x = 0 = y or a NaN argument); x = 0 alone gives ∞.
+        special |= !(a < 7.378_697_629_483_821e19) | (xk == 0.0);
+        let (num, den) = if a < 0.4375 {
+            (a, 1.0)
+        } else if a < 0.6875 {
+            (2.0 * a - 1.0, 2.0 + a)
+        } else if a < 1.1875 {
+            (a - 1.0, a + 1.0)
+        } else if a < 2.4375 {
+            (a - 1.5, 1.0 + 1.5 * a)
+        } else {
+            (-1.0, a)
+        };
+        let (hi, lo) = if a < 0.6875 {
+            (HI[0], LO[0])
+        } else if a < 1.1875 {
+            (HI[1], LO[1])
+        } else if a < 2.4375 {
+            (HI[2], LO[2])
+        } else {
+            (HI[3], LO[3])
+        };
+        // t = a exactly in the first reduction (a / 1).
+        let t = num / den;
+        let z = t * t;
+        let w = z * z;
+        let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
+        let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+        let reduced = hi - ((t * (s1 + s2) - lo) - t);
+        let direct = t - t * (s1 + s2);
+        let z = if a < 0.4375 { direct } else { reduced };
+        let r = if xk > 0.0 { z } else { PI - (z - PI_LO) };
+        out[k] = r.copysign(yk);
+    }
+    special
+}
+
 /// `eˣ` for `x ≤ 0`.
 #[inline(always)]
 pub fn exp_nonpositive(x: f64) -> f64 {
@@ -232,6 +309,47 @@ pub fn lane_dot(a: &[f64], b: &[f64]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+
+    /// [`atan2_lanes`] gives [`atan2`] to the bit wherever it does not flag a lane: every
+    /// reduction of the arctangent (|y/x| below 7/16, up to 11/16, 19/16, 39/16 and beyond) in
+    /// every quadrant, and flags `x = 0`, NaNs and `|y/x| ≥ 2⁶⁶`.
+    #[test]
+    fn atan2_lanes_is_atan2_to_the_bit() {
+        let ratios = [
+            0.0, 1e-300, 0.1, 0.4374, 0.4375, 0.6, 0.6875, 1.0, 1.1875, 2.0, 2.4375, 1e6,
+        ];
+        let mut flagged = 0;
+        for &r in &ratios {
+            for k in 0..200 {
+                let x = (1.0 + 0.37 * k as f64) * if k % 2 == 0 { 1.0 } else { -1.0 };
+                for sy in [1.0, -1.0] {
+                    let y = [sy * r * x.abs() * (1.0 + 1e-3 * k as f64); 2];
+                    let mut out = [0.0; 2];
+                    assert!(!atan2_lanes(&y, &[x; 2], &mut out));
+                    assert_eq!(
+                        out[0].to_bits(),
+                        atan2(y[0], x).to_bits(),
+                        "atan2({}, {x})",
+                        y[0]
+                    );
+                }
+            }
+        }
+        for (y, x) in [
+            (1.0, 0.0),
+            (0.0, 0.0),
+            (f64::NAN, 1.0),
+            (1.0, f64::NAN),
+            (1e300, 1e-300),
+        ] {
+            let mut out = [0.0; 1];
+            if atan2_lanes(&[y], &[x], &mut out) {
+                flagged += 1;
+            }
+        }
+        assert_eq!(flagged, 5);
+    }
+
     use super::*;
 
     #[test]
