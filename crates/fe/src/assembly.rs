@@ -58,6 +58,21 @@ impl Placement {
     }
 }
 
+/// [`Assembler::assemble_element_forces`] for the processor it runs on: the lanes' loops become
+/// AVX2 or AVX-512 instructions where there are (no fused multiply-adds: the same values to the
+/// bit on every processor).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn element_forces_dispatch(asm: &mut Assembler, pl: &Placement, u: &[f64]) {
+    asm.element_forces_lanes(pl, u);
+}
+
+/// [`Assembler::assemble_elements_with_tangent`] for the processor it runs on (as
+/// [`element_forces_dispatch`]).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn element_tangents_dispatch(asm: &mut Assembler, pl: &Placement, u: &[f64]) {
+    asm.element_tangents_lanes(pl, u);
+}
+
 /// An element's stored tangent entries: `(entry of the element's upper triangle (see
 /// [`upper_index`]), value slot)` for its pairs `(i ≤ j)` of free equations (at most 21), and how
 /// many there are.
@@ -189,8 +204,14 @@ impl Assembler {
 
     /// The elements' forces, [`ELEMENT_LANES`] elements at a time
     /// ([`corotational_forces_lanes`]: the same values as element by element), added to the
-    /// residual in element order.
+    /// residual in element order. Compiled for the baseline processor and for AVX2 and AVX-512,
+    /// chosen at run time ([`element_forces_dispatch`]).
     fn assemble_element_forces(&mut self, pl: &Placement, u: &[f64]) {
+        element_forces_dispatch(self, pl, u);
+    }
+
+    #[inline(always)]
+    fn element_forces_lanes(&mut self, pl: &Placement, u: &[f64]) {
         const L: usize = ELEMENT_LANES;
         let ne = self.axial.len();
         let mut inp = ChordLanes::<L>::default();
@@ -205,9 +226,15 @@ impl Assembler {
     }
 
     /// The elements' forces and tangents, [`ELEMENT_LANES`] elements at a time
-    /// ([`corotational_tangent_lanes`]), added in element order.
-    #[allow(clippy::needless_range_loop)]
+    /// ([`corotational_tangent_lanes`]), added in element order; compiled as
+    /// [`Assembler::assemble_element_forces`] is ([`element_tangents_dispatch`]).
     fn assemble_elements_with_tangent(&mut self, pl: &Placement, u: &[f64]) {
+        element_tangents_dispatch(self, pl, u);
+    }
+
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
+    fn element_tangents_lanes(&mut self, pl: &Placement, u: &[f64]) {
         const L: usize = ELEMENT_LANES;
         let ne = self.axial.len();
         let mut inp = ChordLanes::<L>::default();

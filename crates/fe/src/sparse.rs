@@ -215,29 +215,44 @@ impl BandLdlt {
         for (v, &m) in a.values.iter().zip(&self.map) {
             self.band[m] = *v;
         }
-        // A beam line's half-width (5) as a constant: the column's slices have a known bound.
-        // The same arithmetic in the same order as the general path.
-        match self.w {
-            5 => factor_band::<5>(&self.first, &mut self.band),
-            w => factor_band_dyn(&self.first, w, &mut self.band),
-        }
+        factor_dispatch(self.w, &self.first, &mut self.band)
     }
 
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&self, x: &mut [f64]) {
-        match self.w {
-            5 => solve_band::<5>(&self.first, &self.band, x),
-            w => solve_band_dyn(&self.first, w, &self.band, x),
-        }
+        solve_dispatch(self.w, &self.first, &self.band, x)
+    }
+}
+
+/// [`BandLdlt::factor`] compiled for the baseline processor and for AVX2 and AVX-512, chosen at
+/// run time (no fused multiply-adds: the same values to the bit).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn factor_dispatch(w: usize, first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
+    // A beam line's half-width (5) as a constant: the column's slices have a known bound.
+    // The same arithmetic in the same order as the general path.
+    match w {
+        5 => factor_band::<5>(first, band),
+        w => factor_band_dyn(first, w, band),
+    }
+}
+
+/// [`BandLdlt::solve_in_place`] compiled as [`factor_dispatch`] is.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn solve_dispatch(w: usize, first: &[usize], band: &[f64], x: &mut [f64]) {
+    match w {
+        5 => solve_band::<5>(first, band, x),
+        w => solve_band_dyn(first, w, band, x),
     }
 }
 
 /// [`BandLdlt::factor`] for a half-width known at compile time.
+#[inline(always)]
 fn factor_band<const W: usize>(first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
     factor_band_dyn(first, W, band)
 }
 
 /// [`BandLdlt::solve_in_place`] for a half-width known at compile time.
+#[inline(always)]
 fn solve_band<const W: usize>(first: &[usize], band: &[f64], x: &mut [f64]) {
     solve_band_dyn(first, W, band, x)
 }
