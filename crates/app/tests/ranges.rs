@@ -4,12 +4,13 @@
 //! wall tension, fibre stresses) must follow from the recorded moment, tension and height by the
 //! section's formulas, written out here.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use catena::observe::{Observer, Records};
 use catena::run::{self, RunOptions};
 use catena::scene::edit::Edit;
-use catena::scene::DirResolver;
 use catena::statics;
 
 fn root() -> PathBuf {
@@ -51,17 +52,14 @@ fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
 #[test]
 fn ranges_equal_the_statistics_of_every_step() {
     let case = root().join("cases/watchet/pull-up-lay-down.toml");
-    let scene = statics::read_scene(&case)
-        .expect("scene")
-        .edited(
-            &[
-                Edit::set("dynamic.duration", 30.0),
-                Edit::set("dynamic.output_interval", 0.02),
-                Edit::set("dynamic.envelope_start", 20.0),
-            ],
-            &DirResolver::beside(&case),
-        )
-        .expect("edited");
+    let scene = common::edited_case(
+        &case,
+        &[
+            Edit::set("dynamic.duration", 30.0),
+            Edit::set("dynamic.output_interval", 0.02),
+            Edit::set("dynamic.envelope_start", 20.0),
+        ],
+    );
     let st = statics::solve(scene).expect("statics");
     let mut records = Records::new();
     let r = {
@@ -143,16 +141,13 @@ fn ranges_equal_the_statistics_of_every_step() {
 #[test]
 fn no_section_no_stress_ranges() {
     let case = root().join("cases/benchmarks/scr-heave.toml");
-    let scene = statics::read_scene(&case)
-        .expect("scene")
-        .edited(
-            &[
-                Edit::set("dynamic.duration", 1.0),
-                Edit::set("dynamic.envelope_start", 0.0),
-            ],
-            &DirResolver::beside(&case),
-        )
-        .expect("edited");
+    let scene = common::edited_case(
+        &case,
+        &[
+            Edit::set("dynamic.duration", 1.0),
+            Edit::set("dynamic.envelope_start", 0.0),
+        ],
+    );
     let st = statics::solve(scene).expect("statics");
     let r = run::run(st, &mut [], RunOptions::default()).expect("run");
     assert!(r.envelopes.wall.is_none());

@@ -1,11 +1,12 @@
 //! The sea in runs: current in the statics against two independent codes, a run in current starting
 //! in equilibrium, and the hang-off following the vessel's RAOs in a regular wave.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use catena::run::{self, RunOptions};
 use catena::scene::edit::Edit;
-use catena::scene::DirResolver;
 use catena::statics;
 
 fn root() -> PathBuf {
@@ -46,17 +47,14 @@ fn current_statics_match_two_independent_codes() {
 #[test]
 fn a_run_in_current_starts_in_equilibrium() {
     let case = root().join("cases/benchmarks/scr-current.toml");
-    let scene = statics::read_scene(&case)
-        .expect("scene")
-        .edited(
-            &[
-                Edit::remove("motion"),
-                Edit::set("dynamic.duration", 10.0),
-                Edit::set("dynamic.envelope_start", 0.0),
-            ],
-            &DirResolver::beside(&case),
-        )
-        .expect("edited");
+    let scene = common::edited_case(
+        &case,
+        &[
+            Edit::remove("motion"),
+            Edit::set("dynamic.duration", 10.0),
+            Edit::set("dynamic.envelope_start", 0.0),
+        ],
+    );
     let st = statics::solve(scene).expect("statics");
     let t0 = st.summary.top_tension;
     let r = run::run(st, &mut [], RunOptions::default()).expect("runs");

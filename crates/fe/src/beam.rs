@@ -363,10 +363,48 @@ impl<const L: usize> Default for ForceLanes<L> {
 /// degenerate chord, an end rotation past ±π, a NaN) is computed again by
 /// [`corotational_beam_chord`].
 #[inline(always)]
-#[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 pub fn corotational_forces_lanes<const L: usize>(
     inp: &ChordLanes<L>,
     out: &mut ForceLanes<L>,
+) -> bool {
+    let mut basis = ChordBasisLanes::default();
+    let special = forces_lanes_common(inp, out, &mut basis);
+    if special {
+        element_by_element(inp, out, None);
+    }
+    special
+}
+
+/// The chord's length `L`, `c`, `s`, `s/L` and `c/L` per lane, as the forces computed them (the
+/// tangent reuses them).
+struct ChordBasisLanes<const L: usize> {
+    l: [f64; L],
+    c: [f64; L],
+    s: [f64; L],
+    sl: [f64; L],
+    cl: [f64; L],
+}
+
+impl<const L: usize> Default for ChordBasisLanes<L> {
+    fn default() -> Self {
+        Self {
+            l: [0.0; L],
+            c: [0.0; L],
+            s: [0.0; L],
+            sl: [0.0; L],
+            cl: [0.0; L],
+        }
+    }
+}
+
+/// The forces of every lane on the common path, and its basis; whether a lane left it (its
+/// values are then to be recomputed by [`element_by_element`]).
+#[inline(always)]
+#[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+fn forces_lanes_common<const L: usize>(
+    inp: &ChordLanes<L>,
+    out: &mut ForceLanes<L>,
+    basis: &mut ChordBasisLanes<L>,
 ) -> bool {
     use std::f64::consts::TAU;
     let mut beta = [0.0; L];
@@ -390,29 +428,44 @@ pub fn corotational_forces_lanes<const L: usize>(
         out.axial[k] = n;
         out.m1[k] = -m1;
         out.m2[k] = m2;
-    }
-    if special {
-        // Rare: every lane again, element by element (a common lane gives the same values).
-        for k in 0..L {
-            let r = corotational_beam_chord_k(
-                inp.dx[k],
-                inp.dz[k],
-                inp.theta1[k],
-                inp.theta2[k],
-                inp.l0[k],
-                (inp.ka[k], inp.kb[k]),
-                false,
-            );
-            out.f2[k] = r.force[2];
-            out.f3[k] = r.force[3];
-            out.f4[k] = r.force[4];
-            out.f5[k] = r.force[5];
-            out.axial[k] = r.axial;
-            out.m1[k] = r.moment1;
-            out.m2[k] = r.moment2;
-        }
+        (basis.l[k], basis.c[k], basis.s[k]) = (l, c, s);
+        (basis.sl[k], basis.cl[k]) = (sl, cl);
     }
     special
+}
+
+/// Every lane again by [`corotational_beam_chord_k`] (rare: a lane left the common path; a
+/// common lane gives the same values), with the tangent into `kout` if given.
+#[cold]
+#[inline(never)]
+fn element_by_element<const L: usize>(
+    inp: &ChordLanes<L>,
+    out: &mut ForceLanes<L>,
+    mut kout: Option<&mut [[f64; L]; 21]>,
+) {
+    for k in 0..L {
+        let r = corotational_beam_chord_k(
+            inp.dx[k],
+            inp.dz[k],
+            inp.theta1[k],
+            inp.theta2[k],
+            inp.l0[k],
+            (inp.ka[k], inp.kb[k]),
+            kout.is_some(),
+        );
+        out.f2[k] = r.force[2];
+        out.f3[k] = r.force[3];
+        out.f4[k] = r.force[4];
+        out.f5[k] = r.force[5];
+        out.axial[k] = r.axial;
+        out.m1[k] = r.moment1;
+        out.m2[k] = r.moment2;
+        if let Some(kl) = kout.as_deref_mut() {
+            for (t, &(i, j)) in UPPER_PAIRS.iter().enumerate() {
+                kl[t][k] = r.stiffness[i][j];
+            }
+        }
+    }
 }
 
 /// The position of the entry `(i, j)`, `i ≤ j`, of a symmetric 6×6 matrix in its upper triangle
@@ -446,23 +499,9 @@ pub fn corotational_tangent_lanes<const L: usize>(
     out: &mut ForceLanes<L>,
     kout: &mut [[f64; L]; 21],
 ) {
-    if corotational_forces_lanes(inp, out) {
-        for k in 0..L {
-            let r = corotational_beam_chord_k(
-                inp.dx[k],
-                inp.dz[k],
-                inp.theta1[k],
-                inp.theta2[k],
-                inp.l0[k],
-                (inp.ka[k], inp.kb[k]),
-                true,
-            );
-            for i in 0..6 {
-                for j in i..6 {
-                    kout[upper_index(i, j)][k] = r.stiffness[i][j];
-                }
-            }
-        }
+    let mut basis = ChordBasisLanes::default();
+    if forces_lanes_common(inp, out, &mut basis) {
+        element_by_element(inp, out, Some(kout));
         return;
     }
     let mut r = [[0.0; L]; 6];
@@ -471,11 +510,8 @@ pub fn corotational_tangent_lanes<const L: usize>(
     let mut b2 = [[0.0; L]; 6];
     let (mut gq, mut gm, mut kb) = ([0.0; L], [0.0; L], [0.0; L]);
     for k in 0..L {
-        let (dx, dz) = (inp.dx[k], inp.dz[k]);
-        let l = (dx * dx + dz * dz).sqrt();
-        let c = dx / l;
-        let s = dz / l;
-        let (sl, cl) = (s / l, c / l);
+        let ChordBasisLanes { l, c, s, sl, cl } = &basis;
+        let (l, c, s, sl, cl) = (l[k], c[k], s[k], sl[k], cl[k]);
         let (m1, m2) = (-out.m1[k], out.m2[k]);
         [r[0][k], r[1][k], r[2][k], r[3][k], r[4][k], r[5][k]] = [-c, -s, 0.0, c, s, 0.0];
         [q[0][k], q[1][k], q[2][k], q[3][k], q[4][k], q[5][k]] = [s, -c, 0.0, -s, c, 0.0];

@@ -63,37 +63,54 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     (f64::from_bits(sn ^ sin_sign), f64::from_bits(cs ^ cos_sign))
 }
 
+/// fdlibm's `atan`: `atan` at the reduction points 0.5, 1, 1.5 and ∞, in a high part and a low part.
+const HI: [f64; 4] = [
+    4.636_476_090_008_061e-1,
+    std::f64::consts::FRAC_PI_4,
+    9.827_937_232_473_29e-1,
+    std::f64::consts::FRAC_PI_2,
+];
+const LO: [f64; 4] = [
+    2.269_877_745_296_168_7e-17,
+    3.061_616_997_868_383e-17,
+    1.390_331_103_123_099_8e-17,
+    6.123_233_995_736_766e-17,
+];
+/// fdlibm's `atan` series coefficients.
+const AT: [f64; 11] = [
+    3.333_333_333_333_293e-1,
+    -1.999_999_999_987_648_3e-1,
+    1.428_571_427_250_346_6e-1,
+    -1.111_111_040_546_235_6e-1,
+    9.090_887_133_436_507e-2,
+    -7.691_876_205_044_83e-2,
+    6.661_073_137_387_531e-2,
+    -5.833_570_133_790_573e-2,
+    4.976_877_994_615_932e-2,
+    -3.653_157_274_421_691_6e-2,
+    1.628_582_011_536_578_2e-2,
+];
+/// 2⁶⁶: from there on `atan` is π/2 in a double.
+const TWO_POW_66: f64 = 7.378_697_629_483_821e19;
+/// π's low part (fdlibm's `pi_lo`).
+const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
+
+/// fdlibm's `atan` series of the reduced argument, `s1 + s2` (the caller forms `t·(s1 + s2)`).
+#[inline(always)]
+fn atan_series(t: f64) -> f64 {
+    let z = t * t;
+    let w = z * z;
+    let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
+    let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+    s1 + s2
+}
+
 /// `atan(x)` for finite `x` (fdlibm's `atan`: reduction to |x| < 7/16 about 0.5, 1, 1.5 or ∞,
 /// then an 11-term odd polynomial; error below one unit in the last place).
 #[inline]
 fn atan(x: f64) -> f64 {
-    const HI: [f64; 4] = [
-        4.636_476_090_008_061e-1,
-        std::f64::consts::FRAC_PI_4,
-        9.827_937_232_473_29e-1,
-        std::f64::consts::FRAC_PI_2,
-    ];
-    const LO: [f64; 4] = [
-        2.269_877_745_296_168_7e-17,
-        3.061_616_997_868_383e-17,
-        1.390_331_103_123_099_8e-17,
-        6.123_233_995_736_766e-17,
-    ];
-    const AT: [f64; 11] = [
-        3.333_333_333_333_293e-1,
-        -1.999_999_999_987_648_3e-1,
-        1.428_571_427_250_346_6e-1,
-        -1.111_111_040_546_235_6e-1,
-        9.090_887_133_436_507e-2,
-        -7.691_876_205_044_83e-2,
-        6.661_073_137_387_531e-2,
-        -5.833_570_133_790_573e-2,
-        4.976_877_994_615_932e-2,
-        -3.653_157_274_421_691_6e-2,
-        1.628_582_011_536_578_2e-2,
-    ];
     let a = x.abs();
-    if a >= 7.378_697_629_483_821e19 {
+    if a >= TWO_POW_66 {
         // |x| ≥ 2⁶⁶
         return (HI[3] + LO[3]).copysign(x);
     }
@@ -108,13 +125,10 @@ fn atan(x: f64) -> f64 {
     } else {
         (Some(3), -1.0 / a)
     };
-    let z = t * t;
-    let w = z * z;
-    let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
-    let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+    let series = atan_series(t);
     match id {
-        None => t - t * (s1 + s2),
-        Some(i) => (HI[i] - ((t * (s1 + s2) - LO[i]) - t)).copysign(x),
+        None => t - t * series,
+        Some(i) => (HI[i] - ((t * series - LO[i]) - t)).copysign(x),
     }
 }
 
@@ -143,7 +157,6 @@ pub fn atan2(y: f64, x: f64) -> f64 {
         z.copysign(y)
     } else {
         // π − z, with π's low part (fdlibm's pi_lo) kept.
-        const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
         (PI - (z - PI_LO)).copysign(y)
     }
 }
@@ -158,38 +171,12 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 #[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L], out: &mut [f64; L]) -> bool {
     use std::f64::consts::PI;
-    const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
-    const HI: [f64; 4] = [
-        4.636_476_090_008_061e-1,
-        std::f64::consts::FRAC_PI_4,
-        9.827_937_232_473_29e-1,
-        std::f64::consts::FRAC_PI_2,
-    ];
-    const LO: [f64; 4] = [
-        2.269_877_745_296_168_7e-17,
-        3.061_616_997_868_383e-17,
-        1.390_331_103_123_099_8e-17,
-        6.123_233_995_736_766e-17,
-    ];
-    const AT: [f64; 11] = [
-        3.333_333_333_333_293e-1,
-        -1.999_999_999_987_648_3e-1,
-        1.428_571_427_250_346_6e-1,
-        -1.111_111_040_546_235_6e-1,
-        9.090_887_133_436_507e-2,
-        -7.691_876_205_044_83e-2,
-        6.661_073_137_387_531e-2,
-        -5.833_570_133_790_573e-2,
-        4.976_877_994_615_932e-2,
-        -3.653_157_274_421_691_6e-2,
-        1.628_582_011_536_578_2e-2,
-    ];
     let mut special = false;
     for k in 0..L {
         let (yk, xk) = (y[k], x[k]);
         let a = (yk / xk).abs();
         // `!(a < 2⁶⁶)` also catches a NaN (from x = 0 = y or a NaN argument); x = 0 alone gives ∞.
-        special |= !(a < 7.378_697_629_483_821e19) | (xk == 0.0);
+        special |= !(a < TWO_POW_66) | (xk == 0.0);
         let (num, den) = if a < 0.4375 {
             (a, 1.0)
         } else if a < 0.6875 {
@@ -212,12 +199,9 @@ pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L], out: &mut [f64; L
         };
         // t = a exactly in the first reduction (a / 1).
         let t = num / den;
-        let z = t * t;
-        let w = z * z;
-        let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
-        let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
-        let reduced = hi - ((t * (s1 + s2) - lo) - t);
-        let direct = t - t * (s1 + s2);
+        let series = atan_series(t);
+        let reduced = hi - ((t * series - lo) - t);
+        let direct = t - t * series;
         let z = if a < 0.4375 { direct } else { reduced };
         let r = if xk > 0.0 { z } else { PI - (z - PI_LO) };
         out[k] = r.copysign(yk);

@@ -29,3 +29,16 @@ pub fn short_storm23(root: &std::path::Path) -> String {
         .edit("\nstart = 200.0 ", "\nstart = 20.0 ")
         .edit("ramp = 100.0 ", "ramp = 10.0 ")
 }
+
+/// The scene in the file `case` with `edits` applied (files it names are found beside it), for
+/// tests that shorten or trim a repository case.
+#[allow(dead_code)]
+pub fn edited_case(
+    case: &std::path::Path,
+    edits: &[catena::scene::edit::Edit],
+) -> catena::scene::riser::RiserScene {
+    catena::statics::read_scene(case)
+        .expect("scene")
+        .edited(edits, &catena::scene::DirResolver::beside(case))
+        .expect("edited")
+}
