@@ -336,7 +336,12 @@ pub struct DynWorkspace {
     pub asm: Assembler,
     /// Lumped mass per node: `[xx, xz, zz, rot]`.
     mass: Vec<[f64; 4]>,
-    /// Non-inertial forces at the trial, 3 per node.
+    /// Each node's unit tangent `[cos θ, sin θ]` at the iterate (for the hydrodynamics).
+    node_tangent: [Vec<f64>; 2],
+    /// The line's own lumped mass per node (no added mass): it does not change with the motion.
+    structural_mass: Vec<[f64; 4]>,
+    /// Non-inertial forces at the trial, 3 per node (after a commit, those of the step before:
+    /// the converged ones are exchanged into the State's `f_prev`).
     pub f: Vec<f64>,
     /// Seabed force (resistance, buoyancy and damping) per unit length at the trial, per node.
     pub seabed_force: Vec<f64>,
@@ -391,6 +396,8 @@ impl DynWorkspace {
             g_all: vec![0.0; 3 * n],
             asm: Assembler::new(line)?,
             mass: vec![[0.0; 4]; n],
+            structural_mass: structural_mass(line),
+            node_tangent: [vec![1.0; n], vec![0.0; n]],
             f: vec![0.0; 3 * n],
             seabed_force: vec![0.0; n],
             g: vec![0.0; line.n_eq],
@@ -495,7 +502,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
     ws.v.copy_from_slice(&state.v);
     forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
-    lump_mass(dm, &state.u, &mut ws.mass);
+    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
     for i in 0..n {
         let m = ws.mass[i];
         let (fx, fz, fr) = (ws.f[3 * i], ws.f[3 * i + 1], ws.f[3 * i + 2]);
@@ -562,9 +569,12 @@ fn forces_at_iterate(
         }
     }
     if let Some(h) = &dm.environment.hydro {
+        // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
+        // are two long dependency chains, and in one loop too few nodes fit in the processor's
+        // window to overlap them.
+        node_tangents(&pl.base, u, &mut ws.node_tangent);
         for i in 0..n {
-            let th = pl.base[3 * i + 2] + u[3 * i + 2];
-            let (ty, tx) = crate::fastmath::sin_cos(th);
+            let (tx, ty) = (ws.node_tangent[0][i], ws.node_tangent[1][i]);
             let z = pl.base[3 * i + 1] + u[3 * i + 1];
             let kin = ws.wave_kin[i];
             let d = h.drag(
@@ -598,6 +608,21 @@ fn forces_at_iterate(
     ws.f.copy_from_slice(&asm.residual);
 }
 
+/// Each node's unit tangent `(cos θ, sin θ)`, `θ = base + u` (rotation dofs), into `[cos, sin]`:
+/// compiled also for AVX2 and AVX-512 and chosen at run time, where the branch-free sine and
+/// cosine of [`crate::fastmath::sin_cos`] run four or eight nodes at a time (the same operations:
+/// the same values to the bit).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: &mut [Vec<f64>; 2]) {
+    let th = base
+        .chunks_exact(3)
+        .zip(u.chunks_exact(3))
+        .map(|(b, u)| b[2] + u[2]);
+    for ((c, s), th) in cos.iter_mut().zip(sin.iter_mut()).zip(th) {
+        (*s, *c) = crate::fastmath::sin_cos(th);
+    }
+}
+
 /// The water kinematics at each node at `t`, at the positions of the workspace's iterate (the
 /// predictor), into `ws.wave_kin`. Nothing without waves (or without hydrodynamics to load the
 /// line with them).
@@ -614,12 +639,10 @@ fn wave_kinematics(dm: &DynamicModel, t: f64, ws: &mut DynWorkspace) {
     }
 }
 
-/// Lumped mass at the orientation `u` (added mass normal to the tangent there).
-fn lump_mass(dm: &DynamicModel, u: &[f64], mass: &mut [[f64; 4]]) {
-    let (model, pl) = (&dm.line, &dm.placement);
-    for m in mass.iter_mut() {
-        *m = [0.0; 4];
-    }
+/// The line's own lumped mass per node `[xx, xz, zz, rot]`: half of each element's mass at each
+/// of its nodes, and the rotary inertia of a thin ring, `m·D²/8` per length.
+fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
+    let mut mass = vec![[0.0; 4]; model.nodes()];
     for (e, el) in model.elements.iter().enumerate() {
         let half = 0.5 * el.mass * el.l0;
         for i in [e, e + 1] {
@@ -628,6 +651,14 @@ fn lump_mass(dm: &DynamicModel, u: &[f64], mass: &mut [[f64; 4]]) {
             mass[i][3] += half * el.od * el.od / 8.0;
         }
     }
+    mass
+}
+
+/// Lumped mass at the orientation `u`: the line's own ([`structural_mass`]) and the added mass
+/// normal to the tangent there.
+fn lump_mass(dm: &DynamicModel, structural: &[[f64; 4]], u: &[f64], mass: &mut [[f64; 4]]) {
+    let (model, pl) = (&dm.line, &dm.placement);
+    mass.copy_from_slice(structural);
     if let Some(h) = &dm.environment.hydro {
         for (i, m) in mass.iter_mut().enumerate() {
             let ma = h.added_mass(model.node_od[i], model.tributary[i]);
@@ -655,7 +686,7 @@ fn attempt(
     let (model, set) = (&dm.line, &dm.settings);
     let (alpha, beta, gamma) = set.scheme.coefficients();
     let t1 = state.t + dt;
-    lump_mass(dm, &state.u, &mut ws.mass);
+    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
     for (u, ((u0, v0), a0)) in
@@ -876,7 +907,7 @@ fn newmark_kinematics(state: &DynState, ws: &mut DynWorkspace, dt: f64, beta: f6
 /// Commits the converged iterate: the seabed histories are the trial ones at `(ws.u, ws.v)`,
 /// evaluated again from the committed ones (the same pure evaluation as the iterate's residual,
 /// so the same values).
-fn commit(dm: &DynamicModel, state: &mut DynState, ws: &DynWorkspace, t1: f64, dt: f64) {
+fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f64, dt: f64) {
     let (model, pl) = (&dm.line, &dm.placement);
     if let Some(sb) = &model.seabed {
         for (i, h) in state.history.iter_mut().enumerate() {
@@ -884,10 +915,12 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &DynWorkspace, t1: f64, d
             *h = sb.seabed.evaluate(h, z, zdot, dt).next;
         }
     }
-    state.u.copy_from_slice(&ws.u);
-    state.v.copy_from_slice(&ws.v);
-    state.a.copy_from_slice(&ws.a);
-    state.f_prev.copy_from_slice(&ws.f);
+    // Exchanged, not copied: the next attempt writes every entry of the iterate's u, v, a and f
+    // (predictor, Newmark relations and prescribed dofs, forces) before it reads them.
+    std::mem::swap(&mut state.u, &mut ws.u);
+    std::mem::swap(&mut state.v, &mut ws.v);
+    std::mem::swap(&mut state.a, &mut ws.a);
+    std::mem::swap(&mut state.f_prev, &mut ws.f);
     state.t = t1;
     state.step += 1;
 }
@@ -917,8 +950,10 @@ pub fn advance(
     let refn = crate::statics::residual_reference(model);
     let noise = residual_floor(model, &state.u) / refn;
     let target = state.t + dt;
+    // An attempt leaves the State untouched when it fails, so the State is saved only before the
+    // first sub-step that does not complete the step (after a cut): later failures restore it.
     let mut saved = std::mem::take(&mut ws.saved);
-    copy_state(&mut saved, state);
+    let mut was_saved = false;
     let mut info = StepInfo::default();
     let mut h = dt;
     let mut level = 0u32;
@@ -926,6 +961,10 @@ pub fn advance(
     let mut outcome = Ok(());
     while target - state.t > 1e-9 * dt {
         let h_try = h.min(target - state.t);
+        if !was_saved && h_try < target - state.t {
+            copy_state(&mut saved, state);
+            was_saved = true;
+        }
         match attempt(
             dm,
             state,
@@ -981,7 +1020,9 @@ pub fn advance(
         }
     }
     if outcome.is_err() {
-        copy_state(state, &saved);
+        if was_saved {
+            copy_state(state, &saved);
+        }
     } else {
         state.t = target;
     }
@@ -1021,7 +1062,7 @@ pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
     forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
-    lump_mass(dm, &state.u, &mut ws.mass);
+    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
 }
 
 /// Fills `out` with the nodal results of the State just committed by [`advance`] (the workspace

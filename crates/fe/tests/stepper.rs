@@ -427,3 +427,63 @@ fn structural_damping_spares_a_rigid_pendulum() {
     assert!((x_min / -l - 1.0).abs() < 5e-3, "{x_min}");
     assert!((t_min / (6.1137 / 2.0) - 1.0).abs() < 5e-3, "{t_min}");
 }
+
+/// A step that fails leaves the State exactly as it was (to the bit), also after sub-steps of a
+/// cut step have been committed; a step that succeeds after cuts ends at the full step. The falling
+/// pendulum is stepped with Newton allowed 1 to 4 iterations and 0 to 3 cuts: among them, steps that
+/// fail outright, steps that fail after committed sub-steps, and steps that succeed only when cut.
+#[test]
+fn a_failed_step_leaves_the_state_as_it_was() {
+    let (l, m, g) = (10.0, 10.0, 9.80665);
+    let mline = model(
+        segment(l, 10, 1e10, 1e7, m, m * g, 0.1),
+        Support::Pinned,
+        Support::Free,
+        None,
+    );
+    let q: Vec<f64> = (0..mline.nodes())
+        .flat_map(|i| [mline.arc[i], 0.0, 0.0])
+        .collect();
+    let pl = Placement::new(&q);
+    let set = settings(-0.1, None);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let (mut failed, mut failed_after_substeps, mut cut_and_done) = (0, 0, 0);
+    for max_iter in 1..=4 {
+        for max_cuts in 0..=3 {
+            let mut dm = dynamic(&mline, &pl, &set);
+            dm.settings.max_iter = max_iter;
+            dm.settings.max_cuts = max_cuts;
+            let mut ws = DynWorkspace::new(&mline).expect("ws");
+            let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
+            for _ in 0..40 {
+                let before = st.clone();
+                let dt = 0.1;
+                match advance(&dm, &mut st, &mut ws, dt) {
+                    Ok(info) => {
+                        assert_eq!(st.t, before.t + dt);
+                        cut_and_done += usize::from(info.cuts > 0);
+                    }
+                    Err(e) => {
+                        assert_eq!(st.t, before.t);
+                        assert_eq!(st.step, before.step);
+                        for (a, b) in [(&st.u, &before.u), (&st.v, &before.v), (&st.a, &before.a)] {
+                            assert_eq!(bits(a), bits(b), "{e}");
+                        }
+                        assert_eq!(bits(&st.f_prev), bits(&before.f_prev));
+                        failed += 1;
+                        // Sub-steps were committed before the failure when the failed
+                        // sub-step did not start at the step's start.
+                        if let catena_fe::dynamics::StepError::NotConverged { t, dt: h, .. } = e {
+                            failed_after_substeps += usize::from(t - h > before.t + 1e-12);
+                        }
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "{failed} failed ({failed_after_substeps} after sub-steps), {cut_and_done} cut and done"
+    );
+    assert!(failed > 0 && failed_after_substeps > 0 && cut_and_done > 0);
+}
