@@ -502,7 +502,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
     ws.v.copy_from_slice(&state.v);
     forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
-    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
+    lump_mass(dm, &state.u, ws);
     for i in 0..n {
         let m = ws.mass[i];
         let (fx, fz, fr) = (ws.f[3 * i], ws.f[3 * i + 1], ws.f[3 * i + 2]);
@@ -656,14 +656,15 @@ fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
 
 /// Lumped mass at the orientation `u`: the line's own ([`structural_mass`]) and the added mass
 /// normal to the tangent there.
-fn lump_mass(dm: &DynamicModel, structural: &[[f64; 4]], u: &[f64], mass: &mut [[f64; 4]]) {
+fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
     let (model, pl) = (&dm.line, &dm.placement);
-    mass.copy_from_slice(structural);
+    ws.mass.copy_from_slice(&ws.structural_mass);
     if let Some(h) = &dm.environment.hydro {
-        for (i, m) in mass.iter_mut().enumerate() {
+        node_tangents(&pl.base, u, &mut ws.node_tangent);
+        let [cos, sin] = &ws.node_tangent;
+        for (i, m) in ws.mass.iter_mut().enumerate() {
             let ma = h.added_mass(model.node_od[i], model.tributary[i]);
-            let th = pl.base[3 * i + 2] + u[3 * i + 2];
-            let (ty, tx) = crate::fastmath::sin_cos(th);
+            let (tx, ty) = (cos[i], sin[i]);
             m[0] += ma * (1.0 - tx * tx);
             m[1] += -ma * tx * ty;
             m[2] += ma * (1.0 - ty * ty);
@@ -686,7 +687,7 @@ fn attempt(
     let (model, set) = (&dm.line, &dm.settings);
     let (alpha, beta, gamma) = set.scheme.coefficients();
     let t1 = state.t + dt;
-    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
+    lump_mass(dm, &state.u, ws);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
     for (u, ((u0, v0), a0)) in
@@ -1062,7 +1063,7 @@ pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
     forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
-    lump_mass(dm, &ws.structural_mass, &state.u, &mut ws.mass);
+    lump_mass(dm, &state.u, ws);
 }
 
 /// Fills `out` with the nodal results of the State just committed by [`advance`] (the workspace
