@@ -304,7 +304,7 @@ fn factor_band5(first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
         for a in 0..W {
             let t = c[a];
             let l = t / cols[a * (W + 1) + W];
-            let keep = j - W + a >= lo;
+            let keep = j - W + a >= lo; // row i = j−5+a is in the skyline
             d -= if keep { l * t } else { 0.0 };
             c[a] = if keep { l } else { t };
         }
@@ -329,16 +329,8 @@ fn solve_band5(first: &[usize], band: &[f64], x: &mut [f64]) {
     if n <= W {
         return solve_band_dyn(first, W, band, x);
     }
-    // Forward: z_j = b_j − Σ_{i=lo..j−1} L_ji z_i.
-    for j in 0..W {
-        let lo = first[j];
-        let cj = j * (W + 1) + W - j;
-        let mut s = x[j];
-        for (li, xi) in band[lo + cj..j + cj].iter().zip(&x[lo..j]) {
-            s -= li * xi;
-        }
-        x[j] = s;
-    }
+    // Forward: z_j = b_j − Σ_{i=lo..j−1} L_ji z_i, the first five rows by the general loop.
+    forward_rows_dyn(first, W, band, x, 0..W);
     // The last five unknowns, x_{j−5} .. x_{j−1}, in registers (a window array would go through
     // the stack, each row's scalar store then read back as a vector).
     let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = x[..W].try_into().expect("window");
@@ -438,20 +430,32 @@ fn factor_columns_dyn(
     Ok(())
 }
 
+/// The forward sweep `z_j = b_j − Σ_{i=lo..j−1} L_ji z_i` over the rows `rows`, in place.
+#[inline(always)]
+fn forward_rows_dyn(
+    first: &[usize],
+    w: usize,
+    band: &[f64],
+    x: &mut [f64],
+    rows: std::ops::Range<usize>,
+) {
+    for j in rows {
+        let lo = first[j];
+        let cj = j * (w + 1) + w - j;
+        let mut s = x[j];
+        for (li, xi) in band[lo + cj..j + cj].iter().zip(&x[lo..j]) {
+            s -= li * xi;
+        }
+        x[j] = s;
+    }
+}
+
 /// The band solve over each column's skyline; `#[inline(always)]` for the same reason as
 /// [`factor_band_dyn`].
 #[inline(always)]
 fn solve_band_dyn(first: &[usize], w: usize, band: &[f64], x: &mut [f64]) {
     let n = first.len();
-    for (j, &lo) in first.iter().enumerate() {
-        let cj = j * (w + 1) + w - j;
-        let l = &band[lo + cj..j + cj];
-        let mut s = x[j];
-        for (li, xi) in l.iter().zip(&x[lo..j]) {
-            s -= li * xi;
-        }
-        x[j] = s;
-    }
+    forward_rows_dyn(first, w, band, x, 0..n);
     for (j, xj) in x.iter_mut().enumerate().take(n) {
         *xj /= band[j * (w + 1) + w];
     }
