@@ -189,3 +189,20 @@ proptest! {
         }
     }
 }
+
+/// Found by the fuzz target above: the heave riser with `ea = 1e-9` makes the static tangent
+/// singular during load continuation; the retried load step then found the Newton workspace's
+/// residual buffer taken (and panicked on it). It must end in an error naming the file.
+#[test]
+fn a_singular_static_tangent_is_an_error_not_a_panic() {
+    let path = root().join("cases/benchmarks/scr-heave.toml");
+    let text = std::fs::read_to_string(&path).expect("case");
+    assert!(text.contains("\nea = 3.356e9 "));
+    let text = text.replace("\nea = 3.356e9 ", "\nea = 1e-9 ");
+    let file = "fuzz/benchmarks/scr-heave.toml";
+    let scene = RiserScene::parse(file, &text, &DirResolver::beside(&path)).expect("scene");
+    let msg = statics::solve(scene)
+        .expect_err("no static equilibrium")
+        .to_string();
+    assert!(msg.contains(file), "{msg}");
+}

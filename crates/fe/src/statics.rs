@@ -302,21 +302,21 @@ fn newton(
         let r = norm(&g) / refn;
         last = (it, r, worst_node(model, &g));
         rep.residual = r;
+        // Given back before any way out (a singular tangent returns with `?` below): a load step
+        // retried after an error finds the workspace whole.
+        ws.g = g;
         if !r.is_finite() {
-            ws.g = g;
             break;
         }
         if r <= opts.tol {
-            ws.g = g;
             return Ok(());
         }
         rep.iterations += 1;
         let t = Instant::now();
         ws.asm.factor_tangent()?;
-        ws.dq.copy_from_slice(&g);
+        ws.dq.copy_from_slice(&ws.g);
         ws.asm.solve_tangent(&mut ws.dq);
         rep.solve_seconds += t.elapsed().as_secs_f64();
-        ws.g = g;
         let step = ws.dq.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if r <= opts.stagnation_residual && step <= opts.stagnation_step {
             // Machine-precision stagnation: the correction is below what the state resolves.
