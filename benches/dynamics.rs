@@ -34,43 +34,52 @@ fn bench(c: &mut Criterion) {
 }
 
 /// What waves cost per step, measured on real storm steps: 20 consecutive steps from a developed
-/// sea (t = 120 s, after the ramp), against the water kinematics at every node and the vessel's
-/// motion for the same 20 times. Two lines: the 1000 m SCR on 400 elements of 4 m hung from the semi
-/// in a JONSWAP sea of 400 components (Hs 5 m, Tp 9.9 s), and the paper's fatigue case as it runs
-/// (`cases/scr1000/storm23.toml`: 860 elements, 5 m near the surface, 0.5 m in the touchdown zone).
+/// sea (t = 120 s, after the ramp), against the parts waves add for the same 20 times: the water
+/// kinematics at every node and the vessel's motion. Two lines: the 1000 m SCR on 400 elements of
+/// 4 m hung from the semi in a JONSWAP sea of 400 components (Hs 5 m, Tp 9.9 s), and the paper's
+/// fatigue case as it runs (`cases/scr1000/storm23.toml`: 860 elements, 5 m near the surface,
+/// 0.5 m in the touchdown zone).
 ///
-/// Waves add `waves_20_steps` to `20_steps`; their share is `waves / (steps − waves)`. (Before,
-/// one step repeated from the same state was timed: the reused factorisation was then the one of
-/// that very step and Newton converged sooner than in a storm, so the step looked cheaper and the
-/// waves' share larger than in a run.)
+/// Each line twice: as the scene runs by default, the kinematics sampled every `Tp/40` = 0.2475 s
+/// and interpolated ([`catena_fe::wave_sampling`]), and with `kinematics_interval = 0` (exact at
+/// every node at every step, `_exact`). Waves add `waves_20_steps` to `20_steps`; their share is
+/// `waves / (steps − waves)`. (One step repeated from the same state would reuse the very step's
+/// factorisation and converge sooner than in a storm, making the waves' share look larger.)
 fn waves(c: &mut Criterion) {
     use catena::scene::edit::Edit;
     use catena::scene::DirResolver;
+    use catena_fe::wave_sampling::{grid_index, interpolate, sample_nodes, Sample};
     let case =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benchmarks/scr-regular-wave.toml");
     let files = DirResolver::beside(&case);
     let base = catena::statics::read_scene(&case).expect("case");
-    let line400 = base
-        .edited(
-            &[
-                Edit::set("waves.kind", "jonswap"),
-                Edit::set("waves.hs", 5.0),
-                Edit::set("waves.tp", 9.9),
-                Edit::set("waves.seed", 23i64),
-                Edit::set("waves.components", 400i64),
-                Edit::remove("waves.height"),
-                Edit::remove("waves.period"),
-                Edit::set("waves.ramp", 100.0),
-            ],
-            &files,
-        )
-        .expect("storm scene");
+    let storm = [
+        Edit::set("waves.kind", "jonswap"),
+        Edit::set("waves.hs", 5.0),
+        Edit::set("waves.tp", 9.9),
+        Edit::set("waves.seed", 23i64),
+        Edit::set("waves.components", 400i64),
+        Edit::remove("waves.height"),
+        Edit::remove("waves.period"),
+        Edit::set("waves.ramp", 100.0),
+    ];
+    let exact = [Edit::set("waves.kinematics_interval", 0.0)];
+    let line400 = base.edited(&storm, &files).expect("storm scene");
+    let line400_exact = line400.edited(&exact, &files).expect("exact");
     let storm23_case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
     let storm23 = catena::statics::read_scene(&storm23_case).expect("storm 23");
+    let storm23_exact = storm23
+        .edited(&exact, &DirResolver::beside(&storm23_case))
+        .expect("exact");
     let mut g = c.benchmark_group("waves");
     g.sample_size(20);
     const STEPS: usize = 20;
-    for (name, scene) in [("line400", line400), ("storm23_fatigue_mesh", storm23)] {
+    for (name, scene) in [
+        ("line400", line400),
+        ("line400_exact", line400_exact),
+        ("storm23_fatigue_mesh", storm23),
+        ("storm23_fatigue_mesh_exact", storm23_exact),
+    ] {
         let st = catena::statics::solve(scene).expect("statics");
         let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
         let mut ws = DynWorkspace::new(&dm.line).expect("ws");
@@ -87,7 +96,9 @@ fn waves(c: &mut Criterion) {
                 s
             })
         });
-        // The parts waves add, alone, at the same times and the nodes' positions at the start.
+        // The parts waves add, alone, at the same times and the nodes' positions at the start:
+        // what `dynamics` does for the kinematics (sampled on the grid and interpolated, or
+        // exact at every node) and the vessel's motion.
         let waves = dm.environment.waves.as_ref().expect("waves");
         let level = dm.environment.water_level;
         let nodes: Vec<(f64, f64)> = (0..dm.line.nodes())
@@ -99,14 +110,66 @@ fn waves(c: &mut Criterion) {
             })
             .collect();
         let mut sc = waves.scratch();
+        let h = waves.kinematics_interval;
+        let mut samples: [Vec<Option<Sample>>; 2] = Default::default();
+        for s in &mut samples {
+            s.resize(nodes.len(), None);
+        }
+        // The samples around the first step's end are the previous steps' (as in a run): taken
+        // before the timing; within it, a new sample every `h`, as a run takes them.
+        let mut first = 0;
+        if h > 0.0 {
+            first = grid_index(state.t + spec.dt, h);
+            let t0 = (first - 1) as f64 * h;
+            sample_nodes(waves, t0, |i| nodes[i], &mut samples[0], &mut sc);
+            sample_nodes(
+                waves,
+                first as f64 * h,
+                |i| nodes[i],
+                &mut samples[1],
+                &mut sc,
+            );
+        }
+        let start = samples.clone();
         g.bench_function(format!("{name}_waves_20_steps"), |b| {
             b.iter(|| {
                 let mut acc = 0.0;
+                let mut have = first;
+                for (s, s0) in samples.iter_mut().zip(&start) {
+                    s.copy_from_slice(s0);
+                }
                 for j in 1..=STEPS {
                     let t = state.t + j as f64 * spec.dt;
-                    for &(x, z) in &nodes {
-                        if let Some(k) = waves.kinematics_with(x, z, t, &mut sc) {
-                            acc += k.velocity[0];
+                    if h > 0.0 {
+                        let m = grid_index(t, h);
+                        if have != m {
+                            if have + 1 == m {
+                                let [s0, s1] = &mut samples;
+                                s0.copy_from_slice(s1);
+                            } else {
+                                let t0 = (m - 1) as f64 * h;
+                                sample_nodes(waves, t0, |i| nodes[i], &mut samples[0], &mut sc);
+                            }
+                            sample_nodes(
+                                waves,
+                                m as f64 * h,
+                                |i| nodes[i],
+                                &mut samples[1],
+                                &mut sc,
+                            );
+                            have = m;
+                        }
+                        let s = (t - (m - 1) as f64 * h) / h;
+                        for (k0, k1) in samples[0].iter().zip(&samples[1]) {
+                            if let (Some(k0), Some(k1)) = (k0, k1) {
+                                acc += interpolate(k0, k1, s, h).velocity[0];
+                            }
+                        }
+                    } else {
+                        for &(x, z) in &nodes {
+                            if let Some(k) = waves.kinematics_with(x, z, t, &mut sc) {
+                                acc += k.velocity[0];
+                            }
                         }
                     }
                     acc += dm.top_at(t).map_or(0.0, |s| s.d[0]);

@@ -80,6 +80,7 @@ use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
+use crate::wave_sampling::{grid_index, interpolate, sample_nodes, KinematicsGrid};
 use crate::waves::{Kinematics, WaveScratch};
 
 /// The time integration scheme.
@@ -208,6 +209,10 @@ pub struct DynState {
     pub f_prev: Vec<f64>,
     /// Each node's committed seabed history.
     pub history: Vec<SeabedHistory>,
+    /// The wave kinematics samples around the last step's end, when the waves are sampled on a
+    /// time grid ([`crate::wave_sampling`]); `None` otherwise.
+    #[serde(default)]
+    pub wave_grid: Option<KinematicsGrid>,
 }
 
 impl DynState {
@@ -253,6 +258,24 @@ impl DynState {
         }
         if !(self.t.is_finite() && self.t >= 0.0) {
             return Err(format!("state.t = {} is not a time >= 0 s", self.t));
+        }
+        if let Some(g) = &self.wave_grid {
+            for (k, s) in g.samples.iter().enumerate() {
+                if s.len() != n {
+                    return Err(format!(
+                        "state.wave_grid.samples[{k}] has {} entries, expected {n} (one per node)",
+                        s.len()
+                    ));
+                }
+                let finite = |x: &[f64; 2]| x.iter().all(|v| v.is_finite());
+                if let Some(i) = s.iter().position(|o| {
+                    o.is_some_and(|p| !(finite(&p.v) && finite(&p.a) && finite(&p.j)))
+                }) {
+                    return Err(format!(
+                        "state.wave_grid.samples[{k}][{i}] holds a number that is not finite"
+                    ));
+                }
+            }
         }
         Ok(())
     }
@@ -357,6 +380,10 @@ pub struct DynWorkspace {
     wave_kin: Vec<Option<Kinematics>>,
     /// The wave trains' per-time scratch (sized on first use).
     wave_scratch: WaveScratch,
+    /// The wave kinematics samples of the step under way when it needed new ones (committed into
+    /// the State with the step), and whether it did.
+    grid_trial: KinematicsGrid,
+    grid_new: bool,
     /// The flexjoint's vessel-side rotation for the step under way, rad.
     fj_rotation: f64,
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
@@ -413,10 +440,13 @@ impl DynWorkspace {
                 a: vec![0.0; 3 * n],
                 f_prev: vec![0.0; 3 * n],
                 history: vec![untouched; n],
+                wave_grid: None,
             },
             factored_dt: None,
             wave_kin: vec![None; n],
             wave_scratch: WaveScratch::default(),
+            grid_trial: KinematicsGrid::default(),
+            grid_new: false,
             fj_rotation: 0.0,
         })
     }
@@ -497,6 +527,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
         a: v,
         f_prev: vec![0.0; 3 * n],
         history,
+        wave_grid: None,
     };
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
@@ -623,19 +654,81 @@ fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: &mut [Vec<f64>; 2]) {
     }
 }
 
-/// The water kinematics at each node at `t`, at the positions of the workspace's iterate (the
-/// predictor), into `ws.wave_kin`. Nothing without waves (or without hydrodynamics to load the
-/// line with them).
-fn wave_kinematics(dm: &DynamicModel, t: f64, ws: &mut DynWorkspace) {
+/// The water kinematics at each node at `t` into `ws.wave_kin`: evaluated at the positions of the
+/// workspace's iterate (the predictor), or, when the waves are sampled on a time grid
+/// (`kinematics_interval` h > 0), interpolated between the samples at the grid times around `t`
+/// ([`crate::wave_sampling`]), new samples being taken from the committed `state` when the step
+/// first needs them. Nothing without waves (or without hydrodynamics to load the line with them).
+fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWorkspace) {
     let env = &dm.environment;
     let (Some(waves), Some(_)) = (&env.waves, &env.hydro) else {
         return;
     };
     let pl = &dm.placement;
+    let level = env.water_level;
+    let h = waves.kinematics_interval;
+    ws.grid_new = false;
+    if h <= 0.0 {
+        for (i, k) in ws.wave_kin.iter_mut().enumerate() {
+            let x = pl.base[3 * i] + ws.u[3 * i];
+            let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - level;
+            *k = waves.kinematics_with(x, z, t, &mut ws.wave_scratch);
+        }
+        return;
+    }
+    let m = grid_index(t, h);
+    let reuse = state.wave_grid.as_ref().filter(|g| g.index == m);
+    if reuse.is_none() {
+        // The node's position at grid time `tm`, extrapolated from the committed State.
+        let at = |tm: f64| {
+            let tau = tm - state.t;
+            let (u, v, a) = (&state.u, &state.v, &state.a);
+            move |i: usize| {
+                let p = |d: usize| {
+                    let j = 3 * i + d;
+                    pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j]
+                };
+                (p(0), p(1) - level)
+            }
+        };
+        let n = ws.wave_kin.len();
+        let trial = &mut ws.grid_trial;
+        for s in &mut trial.samples {
+            s.resize(n, None); // sized once
+        }
+        let (t0, t1) = ((m - 1) as f64 * h, m as f64 * h);
+        match &state.wave_grid {
+            Some(g) if g.index + 1 == m => trial.samples[0].copy_from_slice(&g.samples[1]),
+            _ => sample_nodes(
+                waves,
+                t0,
+                at(t0),
+                &mut trial.samples[0],
+                &mut ws.wave_scratch,
+            ),
+        }
+        sample_nodes(
+            waves,
+            t1,
+            at(t1),
+            &mut trial.samples[1],
+            &mut ws.wave_scratch,
+        );
+        trial.index = m;
+        ws.grid_new = true;
+    }
+    let grid = reuse.unwrap_or(&ws.grid_trial);
+    let s = (t - (m - 1) as f64 * h) / h;
     for (i, k) in ws.wave_kin.iter_mut().enumerate() {
-        let x = pl.base[3 * i] + ws.u[3 * i];
-        let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - env.water_level;
-        *k = waves.kinematics_with(x, z, t, &mut ws.wave_scratch);
+        *k = match (&grid.samples[0][i], &grid.samples[1][i]) {
+            (Some(k0), Some(k1)) => Some(interpolate(k0, k1, s, h)),
+            // Out of the water at a sample: the exact kinematics at the predicted position.
+            _ => {
+                let x = pl.base[3 * i] + ws.u[3 * i];
+                let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - level;
+                waves.kinematics_with(x, z, t, &mut ws.wave_scratch)
+            }
+        };
     }
 }
 
@@ -700,7 +793,7 @@ fn attempt(
     let prescribed = top.map(|s| (s.d, s.v, s.a));
     // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
-    wave_kinematics(dm, t1, ws);
+    wave_kinematics(dm, state, t1, ws);
     let c_m = 1.0 / (beta * dt * dt);
     let c_v = gamma / (beta * dt);
     let mut last = (0, f64::INFINITY, 0);
@@ -922,6 +1015,13 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
     std::mem::swap(&mut state.v, &mut ws.v);
     std::mem::swap(&mut state.a, &mut ws.a);
     std::mem::swap(&mut state.f_prev, &mut ws.f);
+    if ws.grid_new {
+        match &mut state.wave_grid {
+            Some(g) => std::mem::swap(g, &mut ws.grid_trial),
+            None => state.wave_grid = Some(std::mem::take(&mut ws.grid_trial)),
+        }
+        ws.grid_new = false;
+    }
     state.t = t1;
     state.step += 1;
 }
@@ -935,6 +1035,15 @@ fn copy_state(to: &mut DynState, from: &DynState) {
     to.a.copy_from_slice(&from.a);
     to.f_prev.copy_from_slice(&from.f_prev);
     to.history.copy_from_slice(&from.history);
+    match (&mut to.wave_grid, &from.wave_grid) {
+        (Some(a), Some(b)) if a.samples[0].len() == b.samples[0].len() => {
+            a.index = b.index;
+            for (x, y) in a.samples.iter_mut().zip(&b.samples) {
+                x.copy_from_slice(y);
+            }
+        }
+        (a, b) => a.clone_from(b),
+    }
 }
 
 /// Advances the State by `dt`. When Newton diverges, the attempt is repeated once from the

@@ -27,4 +27,5 @@ pub mod motion;
 pub mod sparse;
 pub mod statics;
 pub mod vessel;
+pub mod wave_sampling;
 pub mod waves;

@@ -158,13 +158,17 @@ pub struct Waves {
     pub depth: f64,
     /// Ramp duration, s (0 for none).
     pub ramp: f64,
+    /// The interval `h` of the time grid the kinematics are sampled on in a dynamic run, s; 0 for
+    /// every step at the nodes' predicted positions ([`crate::wave_sampling`]).
+    #[serde(default)]
+    pub kinematics_interval: f64,
     /// A bound on the elevation, `min(Σ a_i, 12σ)`, m.
     eta_bound: f64,
     /// `Σ a_i ω_i`, m/s: the truncation bound (see [`Waves::kinematics`]).
     aw_sum: f64,
     /// `ln(1e-6·Σ a_i ω_i)`: the truncation tolerance as a logarithm.
     ln_tol: f64,
-    /// The components as columns for the kinematics loops: `s·k`, `k`, `a`, `aω`, `aω²`,
+    /// The components as columns for the kinematics loops: `s·k`, `k`, `a`, `aω`, `aω²`, `aω³`,
     /// `e^{−2kd}`, `1/(1 − e^{−2kd})` and the truncation bound `ln max_{j≥i} a_j ω_j`.
     cols: Columns,
     /// Below this depth (m below the still water level) stretching is left out (see
@@ -279,6 +283,7 @@ impl Waves {
             direction,
             depth,
             ramp,
+            kinematics_interval: 0.0,
             eta_bound,
             aw_sum,
             ln_tol: (1e-6 * aw_sum).ln(),
@@ -454,6 +459,21 @@ impl Waves {
         kinematics_dispatch(self, x, z, t, sc)
     }
 
+    /// [`Waves::kinematics_with`] and the acceleration's time derivative (the jerk, m/s³) at the
+    /// same point: `ü = −s·Σ aω³·C(z')·cos φ`, `ẅ = Σ aω³·S(z')·sin φ`, ramped as
+    /// `r·ü + 2ṙ·u̇ + r̈·u` (like the accelerations, the linear ones at the stretched `z'`). The
+    /// velocity and acceleration are those of [`Waves::kinematics_with`] to the bit. For the
+    /// sampled kinematics of [`crate::wave_sampling`].
+    pub fn kinematics_and_jerk_with(
+        &self,
+        x: f64,
+        z: f64,
+        t: f64,
+        sc: &mut WaveScratch,
+    ) -> Option<(Kinematics, [f64; 2])> {
+        jerk_dispatch(self, x, z, t, sc)
+    }
+
     /// The kinematics without processor-specific code (see [`Waves::kinematics_with`]).
     #[inline(always)]
     fn kinematics_scalar(
@@ -463,7 +483,21 @@ impl Waves {
         t: f64,
         sc: &mut WaveScratch,
     ) -> Option<Kinematics> {
-        let (r, dr, _) = quintic_ramp(t, self.ramp);
+        self.kinematics_generic::<false>(x, z, t, sc)
+            .map(|(k, _)| k)
+    }
+
+    /// The kinematics and, with `JERK`, the jerk (zero without): one body for both, so that the
+    /// velocity and acceleration are the same operations either way.
+    #[inline(always)]
+    fn kinematics_generic<const JERK: bool>(
+        &self,
+        x: f64,
+        z: f64,
+        t: f64,
+        sc: &mut WaveScratch,
+    ) -> Option<(Kinematics, [f64; 2])> {
+        let (r, dr, ddr) = quintic_ramp(t, self.ramp);
         let d = self.depth;
         let z_up = z + 1.1 * self.eta_bound;
         // The bound tail_max[i]·e^{k_i z'} decreases with i: the first i below tol ends the sum
@@ -476,7 +510,7 @@ impl Waves {
         sc.n_hint = n;
         if n == 0 && z_up < 0.0 {
             // Deep: under water, and every component negligible.
-            return Some(Kinematics::default());
+            return Some(Default::default());
         }
         if sc.theta.len() != self.cols.k.len() {
             *sc = self.scratch(); // sized once, on first use
@@ -501,8 +535,8 @@ impl Waves {
         if z > eta {
             return None;
         }
-        if r == 0.0 && dr == 0.0 {
-            return Some(Kinematics::default());
+        if r == 0.0 && dr == 0.0 && (!JERK || ddr == 0.0) {
+            return Some(Default::default());
         }
         let zs = (z - eta) * d / (d + eta);
         // Each component's four terms first (a loop without a running sum, which the compiler can
@@ -515,12 +549,13 @@ impl Waves {
         if !shallow {
             sc.phases(c, x, n);
         }
-        let (k, e2kd, inv_den, aw, aw2) = (
+        let (k, e2kd, inv_den, aw, aw2, aw3) = (
             &c.k[..n],
             &c.e2kd[..n],
             &c.inv_den[..n],
             &c.aw[..n],
             &c.aw2[..n],
+            &c.aw3[..n],
         );
         // Where `k(z' + d) > 21` the seabed's image term `e^{−k(z'+2d)}` is below 2⁻⁵⁴ of `e^{kz'}`
         // and vanishes in the roundings of `e^{kz'} ± e^{−k(z'+2d)}`: those components (the
@@ -531,14 +566,19 @@ impl Waves {
         let deep = deep_from.next_multiple_of(LANES).min(n);
         // Each loop's slices cut to its exact length: no bounds checks, so no scalar iterations.
         let (sps, cps) = (&sc.sp[..n], &sc.cp[..n]);
-        let [t0, t1, t2, t3] = &mut sc.terms;
+        let [t0, t1, t2, t3, t4, t5] = &mut sc.terms;
         let (t0, t1, t2, t3) = (&mut t0[..n], &mut t1[..n], &mut t2[..n], &mut t3[..n]);
+        // The jerk's terms only with `JERK` (empty slices otherwise).
+        let nj = if JERK { n } else { 0 };
+        let (t4, t5) = (&mut t4[..nj], &mut t5[..nj]);
         {
             let m = deep;
             let (k, e2kd, inv_den, aw, aw2) =
                 (&k[..m], &e2kd[..m], &inv_den[..m], &aw[..m], &aw2[..m]);
             let (sps, cps) = (&sps[..m], &cps[..m]);
             let (t0, t1, t2, t3) = (&mut t0[..m], &mut t1[..m], &mut t2[..m], &mut t3[..m]);
+            let mj = if JERK { m } else { 0 };
+            let (aw3, t4, t5) = (&aw3[..mj], &mut t4[..mj], &mut t5[..mj]);
             for j in 0..m {
                 // e^{kz'} and e^{−k(z'+2d)} = e^{−2kd}/e^{kz'}: one exponential per component.
                 let e1 = exp_nonpositive(k[j] * zs);
@@ -549,6 +589,10 @@ impl Waves {
                 t1[j] = aw[j] * sz * sp;
                 t2[j] = aw2[j] * cz * sp;
                 t3[j] = aw2[j] * sz * cp;
+                if JERK {
+                    t4[j] = aw3[j] * cz * cp;
+                    t5[j] = aw3[j] * sz * sp;
+                }
             }
         }
         {
@@ -560,6 +604,8 @@ impl Waves {
                 &mut t2[deep..],
                 &mut t3[deep..],
             );
+            let dj = if JERK { deep } else { 0 };
+            let (aw3, t4, t5) = (&aw3[dj..nj], &mut t4[dj..], &mut t5[dj..]);
             for j in 0..k.len() {
                 let cz = exp_nonpositive(k[j] * zs) * inv_den[j];
                 let (sp, cp) = (sps[j], cps[j]);
@@ -567,11 +613,16 @@ impl Waves {
                 t1[j] = aw[j] * cz * sp;
                 t2[j] = aw2[j] * cz * sp;
                 t3[j] = aw2[j] * cz * cp;
+                if JERK {
+                    t4[j] = aw3[j] * cz * cp;
+                    t5[j] = aw3[j] * cz * sp;
+                }
             }
         }
         // The terms past the truncation are left out (zero in their lanes).
-        for t in [t0, t1, t2, t3] {
-            t[n_all..].fill(0.0);
+        for t in [t0, t1, t2, t3, t4, t5] {
+            let from = n_all.min(t.len());
+            t[from..].fill(0.0);
         }
         let sum = |v: &[f64]| lane_sum(&v[..n]);
         let (u, w, ut, wt) = (
@@ -580,10 +631,20 @@ impl Waves {
             -s * sum(&sc.terms[2]),
             -sum(&sc.terms[3]),
         );
-        Some(Kinematics {
+        let kin = Kinematics {
             velocity: [r * u, r * w],
             acceleration: [r * ut + dr * u, r * wt + dr * w],
-        })
+        };
+        let jerk = if JERK {
+            let (utt, wtt) = (-s * sum(&sc.terms[4]), sum(&sc.terms[5]));
+            [
+                r * utt + 2.0 * dr * ut + ddr * u,
+                r * wtt + 2.0 * dr * wt + ddr * w,
+            ]
+        } else {
+            [0.0; 2]
+        };
+        Some((kin, jerk))
     }
 }
 
@@ -598,6 +659,18 @@ fn kinematics_dispatch(
     sc: &mut WaveScratch,
 ) -> Option<Kinematics> {
     w.kinematics_scalar(x, z, t, sc)
+}
+
+/// [`Waves::kinematics_and_jerk_with`], compiled like [`kinematics_dispatch`].
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn jerk_dispatch(
+    w: &Waves,
+    x: f64,
+    z: f64,
+    t: f64,
+    sc: &mut WaveScratch,
+) -> Option<(Kinematics, [f64; 2])> {
+    w.kinematics_generic::<true>(x, z, t, sc)
 }
 
 /// The first `i < len` where `pred(i)` is false (`len` if none), for a `pred` true then false,
@@ -630,7 +703,7 @@ pub struct WaveScratch {
     theta: Vec<f64>,
     sp: Vec<f64>,
     cp: Vec<f64>,
-    terms: [Vec<f64>; 4],
+    terms: [Vec<f64>; 6],
 }
 
 impl WaveScratch {
@@ -656,6 +729,7 @@ struct Columns {
     amp: Vec<f64>,
     aw: Vec<f64>,
     aw2: Vec<f64>,
+    aw3: Vec<f64>,
     e2kd: Vec<f64>,
     inv_den: Vec<f64>,
     ln_tail: Vec<f64>,
@@ -689,6 +763,13 @@ impl Columns {
                 components
                     .iter()
                     .map(|c| c.amplitude * c.omega * c.omega)
+                    .collect(),
+                0.0,
+            ),
+            aw3: pad(
+                components
+                    .iter()
+                    .map(|c| c.amplitude * c.omega * c.omega * c.omega)
                     .collect(),
                 0.0,
             ),

@@ -268,6 +268,7 @@ pub struct WavesTable {
     #[serde(default = "plus_x")]
     pub direction: String,
     pub ramp: Option<f64>,
+    pub kinematics_interval: Option<f64>,
 }
 
 fn plus_x() -> String {
@@ -1364,7 +1365,7 @@ fn dynamic_spec(
         ));
     }
     let waves = match &raw.waves {
-        Some(w) => Some(waves_of(file, w, site)?),
+        Some(w) => Some(waves_of(file, w, site, d.time_step)?),
         None => None,
     };
     let vessel = match (&raw.vessel, &waves) {
@@ -1443,8 +1444,11 @@ fn dynamic_spec(
     })
 }
 
+/// The default kinematics samples per peak (or regular) period: `h = T/40`.
+pub const KINEMATICS_PER_PERIOD: f64 = 40.0;
+
 /// `[waves]` → the wave train (see `docs/scene.md`).
-fn waves_of(file: &str, w: &WavesTable, site: Site) -> Result<Waves, SceneError> {
+fn waves_of(file: &str, w: &WavesTable, site: Site, time_step: f64) -> Result<Waves, SceneError> {
     let direction = match w.direction.as_str() {
         "+x" => Direction::PlusX,
         "-x" => Direction::MinusX,
@@ -1549,6 +1553,26 @@ fn waves_of(file: &str, w: &WavesTable, site: Site) -> Result<Waves, SceneError>
     }
     let mut waves = waves;
     waves.ramp = ramp;
+    // The kinematics' time grid (`catena_fe::wave_sampling`): by default a fortieth of the peak
+    // (or regular) period, unless that is under two steps (sampling would then save little).
+    waves.kinematics_interval = match w.kinematics_interval {
+        None if natural / KINEMATICS_PER_PERIOD >= 2.0 * time_step => {
+            natural / KINEMATICS_PER_PERIOD
+        }
+        None => 0.0,
+        Some(0.0) => 0.0,
+        Some(h) if h.is_finite() && h >= time_step => h,
+        Some(h) => {
+            return Err(invalid(
+                file,
+                "waves.kinematics_interval",
+                format!(
+                    "0 (the kinematics at every step) or an interval in s >= dynamic.time_step \
+                     ({time_step} s), got {h}"
+                ),
+            ))
+        }
+    };
     Ok(waves)
 }
 
