@@ -48,7 +48,7 @@ fn bench(c: &mut Criterion) {
 fn waves(c: &mut Criterion) {
     use catena::scene::edit::Edit;
     use catena::scene::DirResolver;
-    use catena_fe::wave_sampling::{grid_index, interpolate, sample_nodes, Sample};
+    use catena_fe::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
     let case =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benchmarks/scr-regular-wave.toml");
     let files = DirResolver::beside(&case);
@@ -111,56 +111,36 @@ fn waves(c: &mut Criterion) {
             .collect();
         let mut sc = waves.scratch();
         let h = waves.kinematics_interval;
-        let mut samples: [Vec<Option<Sample>>; 2] = Default::default();
-        for s in &mut samples {
+        let mut grid = KinematicsGrid::default();
+        for s in &mut grid.samples {
             s.resize(nodes.len(), None);
         }
+        let at = |_: f64, i: usize| nodes[i];
         // The samples around the first step's end are the previous steps' (as in a run): taken
         // before the timing; within it, a new sample every `h`, as a run takes them.
-        let mut first = 0;
         if h > 0.0 {
-            first = grid_index(state.t + spec.dt, h);
-            let t0 = (first - 1) as f64 * h;
-            sample_nodes(waves, t0, |i| nodes[i], &mut samples[0], &mut sc);
-            sample_nodes(
-                waves,
-                first as f64 * h,
-                |i| nodes[i],
-                &mut samples[1],
-                &mut sc,
-            );
+            let first = grid_index(state.t + spec.dt, h);
+            fill_interval(waves, h, first, None, at, &mut grid, &mut sc);
         }
-        let start = samples.clone();
+        let start = grid.clone();
+        let mut next = grid.clone();
         g.bench_function(format!("{name}_waves_20_steps"), |b| {
             b.iter(|| {
                 let mut acc = 0.0;
-                let mut have = first;
-                for (s, s0) in samples.iter_mut().zip(&start) {
+                grid.index = start.index;
+                for (s, s0) in grid.samples.iter_mut().zip(&start.samples) {
                     s.copy_from_slice(s0);
                 }
                 for j in 1..=STEPS {
                     let t = state.t + j as f64 * spec.dt;
                     if h > 0.0 {
                         let m = grid_index(t, h);
-                        if have != m {
-                            if have + 1 == m {
-                                let [s0, s1] = &mut samples;
-                                s0.copy_from_slice(s1);
-                            } else {
-                                let t0 = (m - 1) as f64 * h;
-                                sample_nodes(waves, t0, |i| nodes[i], &mut samples[0], &mut sc);
-                            }
-                            sample_nodes(
-                                waves,
-                                m as f64 * h,
-                                |i| nodes[i],
-                                &mut samples[1],
-                                &mut sc,
-                            );
-                            have = m;
+                        if grid.index != m {
+                            fill_interval(waves, h, m, Some(&grid), at, &mut next, &mut sc);
+                            std::mem::swap(&mut grid, &mut next);
                         }
                         let s = (t - (m - 1) as f64 * h) / h;
-                        for (k0, k1) in samples[0].iter().zip(&samples[1]) {
+                        for (k0, k1) in grid.samples[0].iter().zip(&grid.samples[1]) {
                             if let (Some(k0), Some(k1)) = (k0, k1) {
                                 acc += interpolate(k0, k1, s, h).velocity[0];
                             }

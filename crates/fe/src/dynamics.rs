@@ -80,7 +80,7 @@ use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
-use crate::wave_sampling::{grid_index, interpolate, sample_nodes, KinematicsGrid};
+use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
 use crate::waves::{Kinematics, WaveScratch};
 
 /// The time integration scheme.
@@ -668,10 +668,16 @@ fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWork
     let level = env.water_level;
     let h = waves.kinematics_interval;
     ws.grid_new = false;
+    // Node `i` at the iterate (the predictor).
+    let predicted = |u: &[f64], i: usize| {
+        (
+            pl.base[3 * i] + u[3 * i],
+            pl.base[3 * i + 1] + u[3 * i + 1] - level,
+        )
+    };
     if h <= 0.0 {
         for (i, k) in ws.wave_kin.iter_mut().enumerate() {
-            let x = pl.base[3 * i] + ws.u[3 * i];
-            let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - level;
+            let (x, z) = predicted(&ws.u, i);
             *k = waves.kinematics_with(x, z, t, &mut ws.wave_scratch);
         }
         return;
@@ -679,42 +685,27 @@ fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWork
     let m = grid_index(t, h);
     let reuse = state.wave_grid.as_ref().filter(|g| g.index == m);
     if reuse.is_none() {
-        // The node's position at grid time `tm`, extrapolated from the committed State.
-        let at = |tm: f64| {
+        // Node `i` at grid time `tm`, extrapolated from the committed State.
+        let (u, v, a) = (&state.u, &state.v, &state.a);
+        let at = |tm: f64, i: usize| {
             let tau = tm - state.t;
-            let (u, v, a) = (&state.u, &state.v, &state.a);
-            move |i: usize| {
-                let p = |d: usize| {
-                    let j = 3 * i + d;
-                    pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j]
-                };
-                (p(0), p(1) - level)
-            }
+            let p = |j: usize| pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j];
+            (p(3 * i), p(3 * i + 1) - level)
         };
         let n = ws.wave_kin.len();
-        let trial = &mut ws.grid_trial;
-        for s in &mut trial.samples {
+        for s in &mut ws.grid_trial.samples {
             s.resize(n, None); // sized once
         }
-        let (t0, t1) = ((m - 1) as f64 * h, m as f64 * h);
-        match &state.wave_grid {
-            Some(g) if g.index + 1 == m => trial.samples[0].copy_from_slice(&g.samples[1]),
-            _ => sample_nodes(
-                waves,
-                t0,
-                at(t0),
-                &mut trial.samples[0],
-                &mut ws.wave_scratch,
-            ),
-        }
-        sample_nodes(
+        let prev = state.wave_grid.as_ref();
+        fill_interval(
             waves,
-            t1,
-            at(t1),
-            &mut trial.samples[1],
+            h,
+            m,
+            prev,
+            at,
+            &mut ws.grid_trial,
             &mut ws.wave_scratch,
         );
-        trial.index = m;
         ws.grid_new = true;
     }
     let grid = reuse.unwrap_or(&ws.grid_trial);
@@ -724,8 +715,7 @@ fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWork
             (Some(k0), Some(k1)) => Some(interpolate(k0, k1, s, h)),
             // Out of the water at a sample: the exact kinematics at the predicted position.
             _ => {
-                let x = pl.base[3 * i] + ws.u[3 * i];
-                let z = pl.base[3 * i + 1] + ws.u[3 * i + 1] - level;
+                let (x, z) = predicted(&ws.u, i);
                 waves.kinematics_with(x, z, t, &mut ws.wave_scratch)
             }
         };

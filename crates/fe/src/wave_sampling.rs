@@ -108,6 +108,27 @@ pub fn sample_nodes(
     }
 }
 
+/// Makes `grid` hold the samples of the interval `((m − 1)·h, m·h]`: the earlier one copied from
+/// `prev` when `prev` holds the interval before (each grid time is sampled once), else sampled;
+/// the later one sampled. `position(t, i)` is node `i`'s `(x, z)` at grid time `t`.
+pub fn fill_interval(
+    waves: &Waves,
+    h: f64,
+    m: u64,
+    prev: Option<&KinematicsGrid>,
+    position: impl Fn(f64, usize) -> (f64, f64),
+    grid: &mut KinematicsGrid,
+    sc: &mut WaveScratch,
+) {
+    let (t0, t1) = ((m - 1) as f64 * h, m as f64 * h);
+    match prev {
+        Some(g) if g.index + 1 == m => grid.samples[0].copy_from_slice(&g.samples[1]),
+        _ => sample_nodes(waves, t0, |i| position(t0, i), &mut grid.samples[0], sc),
+    }
+    sample_nodes(waves, t1, |i| position(t1, i), &mut grid.samples[1], sc);
+    grid.index = m;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
