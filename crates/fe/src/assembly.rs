@@ -87,6 +87,12 @@ pub struct Assembler {
     solver: LinearSolver,
     /// For element `e`, the value slot of local pair `(a, b)` (`usize::MAX` if not stored).
     elem_pairs: Vec<ElemPairs>,
+    /// For an element whose 21 entries are all stored at the common offsets
+    /// (`regular_offsets`) from its first slot (an interior element: nearly all of them), that
+    /// slot; `NONE` for the others, which scatter through `elem_pairs`.
+    elem_base: Vec<usize>,
+    /// The slots of a regular element's entries (in [`upper_index`] order) from its first slot.
+    regular_offsets: [usize; 21],
     /// The diagonal slot of each equation.
     diag_slots: Vec<usize>,
     /// The off-diagonal (x, z) slot of each node, if both are free.
@@ -137,6 +143,35 @@ impl Assembler {
                 }
             }
         }
+        // The offsets most elements with all 21 entries stored share (the interior ones'), and
+        // every element that has them.
+        let offsets = |(pairs, len): &ElemPairs| {
+            let base = pairs[..*len as usize].iter().map(|p| p.1).min()?;
+            let mut off = [0; 21];
+            for (o, p) in off.iter_mut().zip(&pairs[..*len as usize]) {
+                *o = p.1 - base;
+            }
+            (*len == 21 && pairs.iter().enumerate().all(|(t, p)| p.0 as usize == t))
+                .then_some((base, off))
+        };
+        let mut counts: Vec<([usize; 21], usize)> = Vec::new();
+        for (_, off) in elem_pairs.iter().filter_map(offsets) {
+            match counts.iter_mut().find(|(o, _)| *o == off) {
+                Some((_, c)) => *c += 1,
+                None => counts.push((off, 1)),
+            }
+        }
+        let regular_offsets = counts
+            .iter()
+            .max_by_key(|(_, c)| *c)
+            .map_or([0; 21], |(off, _)| *off);
+        let elem_base = elem_pairs
+            .iter()
+            .map(|p| match offsets(p) {
+                Some((base, off)) if off == regular_offsets => base,
+                _ => NONE,
+            })
+            .collect();
         let diag_slots = (0..model.n_eq)
             .map(|i| k.slot(i, i).unwrap_or(NONE))
             .collect();
@@ -147,12 +182,21 @@ impl Assembler {
             })
             .collect();
         let solver = LinearSolver::new(&k)?;
+        // A line: element e joins nodes e and e + 1 (the element passes write the residual node
+        // by node from that).
+        assert_eq!(
+            model.nodes(),
+            ne + 1,
+            "a line has one node more than elements"
+        );
         let n3 = 3 * model.nodes();
         let nnz = k.values.len();
         Ok(Self {
             k,
             solver,
             elem_pairs,
+            elem_base,
+            regular_offsets,
             diag_slots,
             xz_slots,
             residual: vec![0.0; n3],
@@ -180,7 +224,7 @@ impl Assembler {
         fj_rotation: f64,
         with_k: bool,
     ) {
-        self.residual.fill(0.0);
+        // The element passes write every entry of the residual (no fill needed).
         if with_k {
             self.k.clear();
             self.assemble_elements_with_tangent(pl, u);
@@ -216,13 +260,15 @@ impl Assembler {
         let ne = self.axial.len();
         let mut inp = ChordLanes::<L>::default();
         let mut out = ForceLanes::<L>::default();
+        let mut carry = [0.0; 3];
         for e0 in (0..ne).step_by(L) {
             let m = self.gather_chords(pl, u, e0, &mut inp);
             corotational_forces_lanes(&inp, &mut out);
             for k in 0..m {
-                self.add_element_forces(e0 + k, k, &out);
+                self.put_element_forces(e0 + k, k, &out, &mut carry);
             }
         }
+        self.residual[3 * ne..3 * ne + 3].copy_from_slice(&carry);
     }
 
     /// The elements' forces and tangents, [`ELEMENT_LANES`] elements at a time
@@ -240,19 +286,30 @@ impl Assembler {
         let mut inp = ChordLanes::<L>::default();
         let mut out = ForceLanes::<L>::default();
         let mut kl = [[0.0; L]; 21];
+        let mut carry = [0.0; 3];
         for e0 in (0..ne).step_by(L) {
             let m = self.gather_chords(pl, u, e0, &mut inp);
             corotational_tangent_lanes(&inp, &mut out, &mut kl);
             for k in 0..m {
                 let e = e0 + k;
-                self.add_element_forces(e, k, &out);
-                // The stored (upper-triangle) entries only, from the precomputed list.
-                let (pairs, len) = &self.elem_pairs[e];
-                for &(t, s) in &pairs[..*len as usize] {
-                    self.k.values[s] += kl[t as usize][k];
+                self.put_element_forces(e, k, &out, &mut carry);
+                // The stored (upper-triangle) entries only: at the common offsets from the
+                // element's first slot, or from its own list.
+                let base = self.elem_base[e];
+                if base != NONE {
+                    let values = &mut self.k.values[base..];
+                    for (t, &o) in self.regular_offsets.iter().enumerate() {
+                        values[o] += kl[t][k];
+                    }
+                } else {
+                    let (pairs, len) = &self.elem_pairs[e];
+                    for &(t, s) in &pairs[..*len as usize] {
+                        self.k.values[s] += kl[t as usize][k];
+                    }
                 }
             }
         }
+        self.residual[3 * ne..3 * ne + 3].copy_from_slice(&carry);
     }
 
     /// Elements `e0..` (up to [`ELEMENT_LANES`] of them) into `inp`; returns how many there are
@@ -285,17 +342,27 @@ impl Assembler {
     }
 
     /// Element `e`'s forces (lane `k` of `out`) into the residual, and its axial force and end
-    /// moments.
+    /// moments. Elements come in order from a residual of zeros, so node `e`'s entries are
+    /// `(0 + end forces of element e−1) + start forces of element e` — the sums an add into a
+    /// zeroed residual makes, in their order (the `0 +` keeps a −0 as +0) — written once, with
+    /// element `e`'s end forces carried in `carry` to the next element (the node after the last
+    /// one takes the last `carry`). A read-modify-write of the residual instead loads, as one
+    /// vector, entries the previous element has just stored as two: the store cannot be forwarded
+    /// and the load waits for it.
     #[inline(always)]
-    fn add_element_forces<const L: usize>(&mut self, e: usize, k: usize, out: &ForceLanes<L>) {
+    fn put_element_forces<const L: usize>(
+        &mut self,
+        e: usize,
+        k: usize,
+        out: &ForceLanes<L>,
+        carry: &mut [f64; 3],
+    ) {
         let b = 3 * e;
-        let r = &mut self.residual[b..b + 6];
-        r[0] += -out.f3[k];
-        r[1] += -out.f4[k];
-        r[2] += out.f2[k];
-        r[3] += out.f3[k];
-        r[4] += out.f4[k];
-        r[5] += out.f5[k];
+        let r = &mut self.residual[b..b + 3];
+        r[0] = carry[0] + -out.f3[k];
+        r[1] = carry[1] + -out.f4[k];
+        r[2] = carry[2] + out.f2[k];
+        *carry = [0.0 + out.f3[k], 0.0 + out.f4[k], 0.0 + out.f5[k]];
         self.axial[e] = out.axial[k];
         self.moments[e] = (out.m1[k], out.m2[k]);
     }
@@ -515,6 +582,19 @@ pub fn first_non_finite(
         ("velocity", v, 3),
         ("acceleration", a, 3),
     ];
+    // Nearly always every value is finite: check that first, eight values at a time (branch-free
+    // within each eight, so the check vectorises), and look for the first one only if not.
+    let finite = |xs: &[f64]| {
+        let chunks = xs.chunks_exact(8);
+        let rest = chunks.remainder();
+        chunks
+            .into_iter()
+            .all(|c| c.iter().fold(true, |ok, x| ok & x.is_finite()))
+            && rest.iter().all(|x| x.is_finite())
+    };
+    if fields.iter().all(|(_, vals, _)| finite(vals)) {
+        return None;
+    }
     let n = res.x.len();
     (0..n).find_map(|i| {
         fields.iter().find_map(|(name, vals, per)| {
@@ -570,5 +650,105 @@ mod non_finite_tests {
             first_non_finite(&res, &u, &v, &a),
             Some(("seabed force", 0))
         );
+    }
+}
+
+#[cfg(test)]
+mod assembly_tests {
+    use super::*;
+    use crate::beam::{corotational_beam_chord, Section};
+    use crate::model::{LineSpec, Segment, Support};
+
+    /// A 23-element line (not a multiple of the four lanes), pinned at the top and fixed at the
+    /// anchor, bent into a shape with every kind of element: the ends' (some dofs prescribed) and
+    /// interior ones, and one chord laid from the top pointing along −x (the angle wrap's side).
+    fn bent_line() -> (LineModel, Placement, Vec<f64>) {
+        let seg = |length, element_length| Segment {
+            length,
+            element_length,
+            section: Section {
+                ea: 3.4e9,
+                ei: 17.7e6,
+            },
+            weight: 1010.0,
+            mass: 145.0,
+            od: 0.2286,
+        };
+        let model = LineModel::build(&LineSpec {
+            segments: vec![seg(40.0, 4.0), seg(13.0, 1.0)],
+            top: Support::Pinned,
+            anchor: Support::Fixed,
+            seabed: None,
+            flexjoint: Some((5.0e5, 0.1)),
+        })
+        .expect("model");
+        let n = model.nodes();
+        let mut q = vec![0.0; 3 * n];
+        for i in 0..n {
+            let s = model.arc[i];
+            q[3 * i] = -s * (0.02 * s).cos();
+            q[3 * i + 1] = 60.0 - s * (0.03 * s).sin();
+            q[3 * i + 2] = -std::f64::consts::PI + 0.01 * s;
+        }
+        let u = (0..3 * n)
+            .map(|g| 1e-3 * ((g * 7919) % 113) as f64 - 0.05)
+            .collect();
+        (model, Placement::new(&q), u)
+    }
+
+    /// The residual and tangent as a plain element-by-element assembly forms them: zeros, then
+    /// each element's forces and stiffness added in element order ([`corotational_beam_chord`]).
+    fn plain(
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        asm: &Assembler,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let mut r = vec![0.0; 3 * model.nodes()];
+        let mut k = vec![0.0; asm.k.values.len()];
+        for (e, el) in model.elements.iter().enumerate() {
+            let b = 3 * e;
+            let [cx, cz] = pl.chords[e];
+            let resp = corotational_beam_chord(
+                cx + (u[b + 3] - u[b]),
+                cz + (u[b + 4] - u[b + 1]),
+                pl.base[b + 2] + u[b + 2],
+                pl.base[b + 5] + u[b + 5],
+                el.l0,
+                &el.section,
+                true,
+            );
+            for a in 0..6 {
+                r[b + a] += resp.force[a];
+            }
+            let (pairs, len) = &asm.elem_pairs[e];
+            for &(t, s) in &pairs[..*len as usize] {
+                let (i, j) = UPPER_PAIRS[t as usize];
+                k[s] += resp.stiffness[i][j];
+            }
+        }
+        (r, k)
+    }
+
+    #[test]
+    fn element_passes_are_the_plain_assembly_to_the_bit() {
+        let (model, pl, u) = bent_line();
+        let mut asm = Assembler::new(&model).expect("assembler");
+        let ne = model.elements.len();
+        // Every element whose six dofs are free and whose neighbours' are too takes the common
+        // offsets; the ends' do not.
+        let regular = asm.elem_base.iter().filter(|b| **b != NONE).count();
+        assert!(regular >= ne - 3, "{regular} of {ne} elements regular");
+        assert!(asm.elem_base[0] == NONE && asm.elem_base[ne - 1] == NONE);
+        let (r, k) = plain(&model, &pl, &u, &asm);
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        asm.residual.fill(f64::NAN);
+        asm.assemble_element_forces(&pl, &u);
+        assert_eq!(bits(&asm.residual), bits(&r), "forces only");
+        asm.residual.fill(f64::NAN);
+        asm.k.clear();
+        asm.assemble_elements_with_tangent(&pl, &u);
+        assert_eq!(bits(&asm.residual), bits(&r), "forces with the tangent");
+        assert_eq!(bits(&asm.k.values), bits(&k), "tangent");
     }
 }

@@ -396,6 +396,8 @@ pub struct DynWorkspace {
     fixed: Vec<usize>,
     /// The residual of every dof (3 per node) before its free equations are taken.
     g_all: Vec<f64>,
+    /// The residual's reference norm ([`crate::statics::residual_reference`]) of the Model.
+    reference: f64,
 }
 
 impl DynWorkspace {
@@ -418,6 +420,7 @@ impl DynWorkspace {
             }
         }
         Ok(Self {
+            reference: crate::statics::residual_reference(line),
             free_runs,
             fixed,
             g_all: vec![0.0; 3 * n],
@@ -786,7 +789,7 @@ fn attempt(
     wave_kinematics(dm, state, t1, ws);
     let c_m = 1.0 / (beta * dt * dt);
     let c_v = gamma / (beta * dt);
-    let mut last = (0, f64::INFINITY, 0);
+    let mut last = (0, f64::INFINITY);
     let mut first = f64::INFINITY;
     // After a correction with a fresh factorisation Newton is quadratic and the next residual
     // nearly always converges: evaluate it without the tangent, and assemble the tangent at that
@@ -838,20 +841,14 @@ fn attempt(
                 g[k] = inertia[k] + (1.0 + alpha) * f[k] - alpha * f_prev[k];
             }
         }
-        for &(g0, e0, len) in &ws.free_runs {
-            ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
-        }
         if !lazy {
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
-        // The norm and the worst equation in one pass (its node is looked up only on failure).
-        let (mut sq, mut big, mut worst) = (0.0, 0.0, 0);
-        for (e, x) in ws.g.iter().enumerate() {
-            sq += x * x;
-            if x.abs() > big {
-                (big, worst) = (x.abs(), e);
-            }
-        }
+        let sq: f64 = ws
+            .free_runs
+            .iter()
+            .map(|&(g0, _, len)| sum_of_squares(&ws.g_all[g0..g0 + len]))
+            .sum();
         let r = sq.sqrt() / refn;
         if r.is_finite() && r > r_prev && backtracks < MAX_BACKTRACKS {
             // u = u₀ − λ·dq → u₀ − (λ/2)·dq.
@@ -864,17 +861,22 @@ fn attempt(
             backtracks += 1;
             continue;
         }
+        // The free equations of an accepted iterate (a halved correction's are not kept: on
+        // failure the worst equation is looked up in the last accepted one's, [`worst_node`]).
+        for &(g0, e0, len) in &ws.free_runs {
+            ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
+        }
         r_prev = r;
         lambda = 1.0;
         backtracks = 0;
-        last = (it, r, worst);
+        last = (it, r);
         if it == 0 {
             first = r;
         }
         // Diverging (the residual 10⁴ times its start): give up at once, retry or cut.
         if !r.is_finite() || (it >= 2 && r > 1e4 * first) {
             return Err(Failed {
-                last: worst_node(model, last),
+                last: worst_node(model, last, &ws.g),
                 diverged: true,
             });
         }
@@ -899,7 +901,7 @@ fn attempt(
         }
         ws.dq.copy_from_slice(&ws.g);
         ws.asm.solve_tangent(&mut ws.dq);
-        let step = ws.dq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let step = max_abs(&ws.dq);
         for &(g0, e0, len) in &ws.free_runs {
             for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
                 *u -= dq;
@@ -914,7 +916,7 @@ fn attempt(
         }
     }
     Err(Failed {
-        last: worst_node(model, last),
+        last: worst_node(model, last, &ws.g),
         diverged: false,
     })
 }
@@ -922,8 +924,16 @@ fn attempt(
 /// Halvings of one Newton correction that raised the residual, before it is taken as it is.
 pub const MAX_BACKTRACKS: u32 = 3;
 
-/// `(iteration, residual, worst equation)` with the equation replaced by its node.
-fn worst_node(model: &LineModel, (it, r, eq): (usize, f64, usize)) -> (usize, f64, usize) {
+/// `(iteration, residual)` of the last accepted iterate and the node of the largest entry of its
+/// residual on the free equations, `g` (the first of equal ones).
+fn worst_node(model: &LineModel, (it, r): (usize, f64), g: &[f64]) -> (usize, f64, usize) {
+    let mut eq = 0;
+    let mut big = 0.0;
+    for (e, x) in g.iter().enumerate() {
+        if x.abs() > big {
+            (big, eq) = (x.abs(), e);
+        }
+    }
     let node = model
         .equation
         .iter()
@@ -938,6 +948,42 @@ fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f
         asm.add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
         asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
     }
+}
+
+/// `Σ x²`, in eight partial sums (one running sum is a chain of dependent additions, each waiting
+/// for the one before: the loop ran at the adder's latency). Its rounding differs from one running
+/// sum's by a few units in the last place.
+fn sum_of_squares(xs: &[f64]) -> f64 {
+    let mut acc = [0.0; 8];
+    let chunks = xs.chunks_exact(8);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a += x * x;
+        }
+    }
+    let mut s = ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7]));
+    for x in rest {
+        s += x * x;
+    }
+    s
+}
+
+/// `max |x|` (0 for none; a NaN is passed over, as `f64::max` does), in eight partial maxima: the
+/// same value as one running maximum, without its chain of dependent comparisons.
+pub fn max_abs(xs: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 8];
+    let chunks = xs.chunks_exact(8);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a = a.max(x.abs());
+        }
+    }
+    rest.iter()
+        .fold(acc.iter().fold(0.0, |m, a| m.max(*a)), |m, x| {
+            m.max(x.abs())
+        })
 }
 
 /// A failed attempt: the last iterate's (iteration, relative residual, worst node), and whether
@@ -955,9 +1001,20 @@ struct Failed {
 /// for short elements far from the base: Watchet with 0.0625 m elements stalled at a relative
 /// residual of 1.05e-6 with the worst node wandering along the line.)
 pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
-    let big = u
+    // The largest |x| and |z| in eight partial maxima, four nodes at a time (the same value as
+    // one running maximum, without its chain of dependent comparisons).
+    let mut acc = [0.0f64; 8];
+    let nodes = u.chunks_exact(12);
+    let rest = nodes.remainder();
+    for c in nodes {
+        for k in 0..4 {
+            acc[2 * k] = acc[2 * k].max(c[3 * k].abs());
+            acc[2 * k + 1] = acc[2 * k + 1].max(c[3 * k + 1].abs());
+        }
+    }
+    let big = rest
         .chunks_exact(3)
-        .fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs()));
+        .fold(max_abs(&acc), |m, c| m.max(c[0].abs()).max(c[1].abs()));
     10.0 * f64::EPSILON
         * model
             .elements
@@ -1047,7 +1104,7 @@ pub fn advance(
     dt: f64,
 ) -> Result<StepInfo, StepError> {
     let model = &dm.line;
-    let refn = crate::statics::residual_reference(model);
+    let refn = ws.reference;
     let noise = residual_floor(model, &state.u) / refn;
     let target = state.t + dt;
     // An attempt leaves the State untouched when it fails, so the State is saved only before the
@@ -1186,4 +1243,46 @@ pub fn results(dm: &DynamicModel, state: &DynState, ws: &DynWorkspace, out: &mut
         },
         out,
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Values of every size and sign, with NaNs, ±0 and a length that is not a multiple of eight.
+    fn values(n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|i| match i % 37 {
+                5 => f64::NAN,
+                11 => -0.0,
+                _ => {
+                    ((i * 7919) % 1013) as f64
+                        * 10f64.powi((i % 13) as i32 - 6)
+                        * (-1f64).powi(i as i32)
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_partial_maxima_are_the_running_maximum() {
+        for n in [0, 1, 7, 8, 9, 100, 1203] {
+            let x = values(n);
+            let running = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert_eq!(max_abs(&x).to_bits(), running.to_bits(), "n = {n}");
+        }
+    }
+
+    #[test]
+    fn the_partial_sums_of_squares_are_the_running_sum_to_rounding() {
+        for n in [0, 1, 7, 8, 9, 100, 1203] {
+            let x: Vec<f64> = values(n).into_iter().filter(|v| !v.is_nan()).collect();
+            let running = x.iter().fold(0.0, |s, v| s + v * v);
+            let s = sum_of_squares(&x);
+            assert!(
+                (s - running).abs() <= 1e-15 * running,
+                "n = {n}: {s} vs {running}"
+            );
+        }
+    }
 }

@@ -171,42 +171,45 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 #[allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L], out: &mut [f64; L]) -> bool {
     use std::f64::consts::PI;
-    let mut special = false;
+    // Stage by stage over the lanes, each choice a select of values computed for every lane: in
+    // one loop with the reductions as an `if` chain the compiler kept the lanes scalar, with
+    // branches. A nested select from the last reduction to the first picks what the chain picks
+    // (each bound implies the next).
+    let mut a = [0.0; L];
+    let mut special = [false; L];
     for k in 0..L {
-        let (yk, xk) = (y[k], x[k]);
-        let a = (yk / xk).abs();
+        a[k] = (y[k] / x[k]).abs();
         // `!(a < 2⁶⁶)` also catches a NaN (from x = 0 = y or a NaN argument); x = 0 alone gives ∞.
-        special |= !(a < TWO_POW_66) | (xk == 0.0);
-        let (num, den) = if a < 0.4375 {
-            (a, 1.0)
-        } else if a < 0.6875 {
-            (2.0 * a - 1.0, 2.0 + a)
-        } else if a < 1.1875 {
-            (a - 1.0, a + 1.0)
-        } else if a < 2.4375 {
-            (a - 1.5, 1.0 + 1.5 * a)
-        } else {
-            (-1.0, a)
-        };
-        let (hi, lo) = if a < 0.6875 {
-            (HI[0], LO[0])
-        } else if a < 1.1875 {
-            (HI[1], LO[1])
-        } else if a < 2.4375 {
-            (HI[2], LO[2])
-        } else {
-            (HI[3], LO[3])
-        };
-        // t = a exactly in the first reduction (a / 1).
-        let t = num / den;
-        let series = atan_series(t);
-        let reduced = hi - ((t * series - lo) - t);
-        let direct = t - t * series;
-        let z = if a < 0.4375 { direct } else { reduced };
-        let r = if xk > 0.0 { z } else { PI - (z - PI_LO) };
-        out[k] = r.copysign(yk);
+        special[k] = !(a[k] < TWO_POW_66) | (x[k] == 0.0);
     }
-    special
+    let (mut t, mut hi, mut lo) = ([0.0; L], [0.0; L], [0.0; L]);
+    for k in 0..L {
+        let a = a[k];
+        let (c0, c1, c2, c3) = (a < 0.4375, a < 0.6875, a < 1.1875, a < 2.4375);
+        let num = if c3 { a - 1.5 } else { -1.0 };
+        let num = if c2 { a - 1.0 } else { num };
+        let num = if c1 { 2.0 * a - 1.0 } else { num };
+        let num = if c0 { a } else { num };
+        let den = if c3 { 1.0 + 1.5 * a } else { a };
+        let den = if c2 { a + 1.0 } else { den };
+        let den = if c1 { 2.0 + a } else { den };
+        let den = if c0 { 1.0 } else { den };
+        // t = a exactly in the first reduction (a / 1).
+        t[k] = num / den;
+        let (h, l) = if c3 { (HI[2], LO[2]) } else { (HI[3], LO[3]) };
+        let (h, l) = if c2 { (HI[1], LO[1]) } else { (h, l) };
+        (hi[k], lo[k]) = if c1 { (HI[0], LO[0]) } else { (h, l) };
+    }
+    for k in 0..L {
+        let t = t[k];
+        let series = atan_series(t);
+        let reduced = hi[k] - ((t * series - lo[k]) - t);
+        let direct = t - t * series;
+        let z = if a[k] < 0.4375 { direct } else { reduced };
+        let r = if x[k] > 0.0 { z } else { PI - (z - PI_LO) };
+        out[k] = r.copysign(y[k]);
+    }
+    special.iter().any(|s| *s)
 }
 
 /// `eˣ` for `x ≤ 0`.
