@@ -95,8 +95,8 @@ pub struct Assembler {
     regular_offsets: [usize; 21],
     /// The diagonal slot of each equation.
     diag_slots: Vec<usize>,
-    /// The off-diagonal (x, z) slot of each node, if both are free.
-    xz_slots: Vec<usize>,
+    /// Each node's slots `[xx, xz, zz]` (`NONE` where a dof is prescribed).
+    node_slots: Vec<[usize; 3]>,
     /// Global residual `R(q)`, 3 per node.
     pub residual: Vec<f64>,
     /// Element axial forces, N.
@@ -175,10 +175,14 @@ impl Assembler {
         let diag_slots = (0..model.n_eq)
             .map(|i| k.slot(i, i).unwrap_or(NONE))
             .collect();
-        let xz_slots = (0..model.nodes())
-            .map(|i| match (eq(3 * i), eq(3 * i + 1)) {
-                (Some(a), Some(b)) => k.slot(a, b).unwrap_or(NONE),
-                _ => NONE,
+        let diag = |g: usize| eq(g).and_then(|a| k.slot(a, a)).unwrap_or(NONE);
+        let node_slots = (0..model.nodes())
+            .map(|i| {
+                let xz = match (eq(3 * i), eq(3 * i + 1)) {
+                    (Some(a), Some(b)) => k.slot(a, b).unwrap_or(NONE),
+                    _ => NONE,
+                };
+                [diag(3 * i), xz, diag(3 * i + 1)]
             })
             .collect();
         let solver = LinearSolver::new(&k)?;
@@ -198,7 +202,7 @@ impl Assembler {
             elem_base,
             regular_offsets,
             diag_slots,
-            xz_slots,
+            node_slots,
             residual: vec![0.0; n3],
             axial: vec![0.0; ne],
             moments: vec![(0.0, 0.0); ne],
@@ -418,17 +422,11 @@ impl Assembler {
 
     /// Adds a symmetric 2×2 block `[[xx, xz], [xz, zz]]` to the tangent at node `i`'s translations.
     #[inline]
-    pub fn add_node_block(&mut self, model: &LineModel, i: usize, xx: f64, xz: f64, zz: f64) {
-        let (ex, ez) = (model.equation[3 * i], model.equation[3 * i + 1]);
-        if let Some(a) = ex {
-            self.k.values[self.diag_slots[a]] += xx;
-        }
-        if let Some(b) = ez {
-            self.k.values[self.diag_slots[b]] += zz;
-        }
-        let s = self.xz_slots[i];
-        if s != NONE {
-            self.k.values[s] += xz;
+    pub fn add_node_block(&mut self, i: usize, xx: f64, xz: f64, zz: f64) {
+        for (s, v) in self.node_slots[i].into_iter().zip([xx, xz, zz]) {
+            if s != NONE {
+                self.k.values[s] += v;
+            }
         }
     }
 
@@ -442,8 +440,11 @@ impl Assembler {
     /// Numeric factorisation of the tangent last assembled (its values are kept, see
     /// [`Assembler::factored_values`]).
     pub fn factor_tangent(&mut self) -> Result<(), SolveError> {
-        self.factored.copy_from_slice(&self.k.values);
-        self.solver.factor(&self.k)
+        let factored = self.solver.factor(&self.k);
+        // Kept by exchange, not copied: every factorisation follows an assembly of the tangent,
+        // which starts by clearing the values (after this, `k` holds stale values until then).
+        std::mem::swap(&mut self.factored, &mut self.k.values);
+        factored
     }
 
     /// The tangent values of the last factorisation.

@@ -368,6 +368,10 @@ pub struct DynWorkspace {
     pub f: Vec<f64>,
     /// Seabed force (resistance, buoyancy and damping) per unit length at the trial, per node.
     pub seabed_force: Vec<f64>,
+    /// Each node's trial seabed history at the last iterate evaluated, when that evaluation kept
+    /// them (`histories_kept`): the commit then takes them instead of evaluating them again.
+    trial_history: Vec<SeabedHistory>,
+    histories_kept: bool,
     g: Vec<f64>,
     dq: Vec<f64>,
     u: Vec<f64>,
@@ -430,6 +434,8 @@ impl DynWorkspace {
             node_tangent: [vec![1.0; n], vec![0.0; n]],
             f: vec![0.0; 3 * n],
             seabed_force: vec![0.0; n],
+            trial_history: vec![untouched; n],
+            histories_kept: false,
             g: vec![0.0; line.n_eq],
             dq: vec![0.0; line.n_eq],
             u: vec![0.0; 3 * n],
@@ -534,7 +540,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
     };
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
-    forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
+    forces_at_iterate(dm, &state.history, ws, Pass::Forces, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
     lump_mass(dm, &state.u, ws);
     for i in 0..n {
@@ -566,11 +572,14 @@ fn forces_at_iterate(
     dm: &DynamicModel,
     committed: &[SeabedHistory],
     ws: &mut DynWorkspace,
-    with_k: bool,
+    pass: Pass,
     k_scale: f64,
     c_v: f64,
     dt: f64,
 ) {
+    let with_k = pass == Pass::Tangent;
+    let keep = pass == Pass::KeepingHistories;
+    ws.histories_kept = keep && dm.line.seabed.is_some();
     let (model, pl) = (&dm.line, &dm.placement);
     let (u, v) = (&ws.u, &ws.v);
     let asm = &mut ws.asm;
@@ -585,9 +594,12 @@ fn forces_at_iterate(
     if let Some(sb) = &model.seabed {
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
-            // The trial history `t.next` is not kept: [`commit`] evaluates it again at the
-            // converged iterate (copying it here at every evaluation cost more).
+            // The trial history `t.next` is kept only in the pass expected to converge (copying
+            // it at every evaluation cost more than evaluating it again in [`commit`]).
             let t = sb.seabed.evaluate(&committed[i], z, zdot, dt);
+            if keep {
+                ws.trial_history[i] = t.next;
+            }
             let l = model.tributary[i];
             let up = t.total();
             let mut k = t.tangent;
@@ -635,11 +647,23 @@ fn forces_at_iterate(
             if with_k {
                 let f = k_scale * c_v;
                 let [cxx, cxz, czz] = d.damping;
-                asm.add_node_block(model, i, f * cxx, f * cxz, f * czz);
+                asm.add_node_block(i, f * cxx, f * cxz, f * czz);
             }
         }
     }
     ws.f.copy_from_slice(&asm.residual);
+}
+
+/// What an evaluation of the forces at an iterate assembles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pass {
+    /// The residual only.
+    Forces,
+    /// The residual, keeping each node's trial seabed history for [`commit`] (the iterate is
+    /// expected to converge).
+    KeepingHistories,
+    /// The residual and the tangent.
+    Tangent,
 }
 
 /// Each node's unit tangent `(cos θ, sin θ)`, `θ = base + u` (rotation dofs), into `[cos, sin]`:
@@ -822,7 +846,14 @@ fn attempt(
         // step instead of two; later iterations are full Newton.
         let reuse = it == 0 && ws.factored_dt == Some(dt);
         let lazy = reuse || after_fresh;
-        forces_at_iterate(dm, &state.history, ws, !lazy, 1.0 + alpha, c_v, dt);
+        // The residual after a fresh correction nearly always converges: its seabed trials'
+        // histories are kept for the commit.
+        let pass = match (lazy, after_fresh) {
+            (false, _) => Pass::Tangent,
+            (true, true) => Pass::KeepingHistories,
+            (true, false) => Pass::Forces,
+        };
+        forces_at_iterate(dm, &state.history, ws, pass, 1.0 + alpha, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
         for ((((g, m), a), f), f_prev) in ws
             .g_all
@@ -888,7 +919,7 @@ fn attempt(
         if after_fresh && !reuse {
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
-            forces_at_iterate(dm, &state.history, ws, true, 1.0 + alpha, c_v, dt);
+            forces_at_iterate(dm, &state.history, ws, Pass::Tangent, 1.0 + alpha, c_v, dt);
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         after_fresh = !reuse;
@@ -910,7 +941,15 @@ fn attempt(
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             newmark_kinematics(state, ws, dt, beta, gamma);
-            forces_at_iterate(dm, &state.history, ws, false, 1.0 + alpha, c_v, dt);
+            forces_at_iterate(
+                dm,
+                &state.history,
+                ws,
+                Pass::KeepingHistories,
+                1.0 + alpha,
+                c_v,
+                dt,
+            );
             commit(dm, state, ws, t1, dt);
             return Ok(());
         }
@@ -945,7 +984,7 @@ fn worst_node(model: &LineModel, (it, r): (usize, f64), g: &[f64]) -> (usize, f6
 /// The lumped mass's part of the tangent, `c_m·M_i` at every node `i`.
 fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f64; 4]]) {
     for (i, m) in mass.iter().enumerate() {
-        asm.add_node_block(model, i, c_m * m[0], c_m * m[1], c_m * m[2]);
+        asm.add_node_block(i, c_m * m[0], c_m * m[1], c_m * m[2]);
         asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
     }
 }
@@ -1050,7 +1089,11 @@ fn newmark_kinematics(state: &DynState, ws: &mut DynWorkspace, dt: f64, beta: f6
 /// so the same values).
 fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f64, dt: f64) {
     let (model, pl) = (&dm.line, &dm.placement);
-    if let Some(sb) = &model.seabed {
+    if ws.histories_kept {
+        // Evaluated at this very iterate from these committed histories (the last pass).
+        std::mem::swap(&mut state.history, &mut ws.trial_history);
+        ws.histories_kept = false;
+    } else if let Some(sb) = &model.seabed {
         for (i, h) in state.history.iter_mut().enumerate() {
             let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
             *h = sb.seabed.evaluate(h, z, zdot, dt).next;
@@ -1218,7 +1261,7 @@ pub fn sdof_free_vibration(
 pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
-    forces_at_iterate(dm, &state.history, ws, false, 0.0, 0.0, 0.0);
+    forces_at_iterate(dm, &state.history, ws, Pass::Forces, 0.0, 0.0, 0.0);
     lump_mass(dm, &state.u, ws);
 }
 
