@@ -594,14 +594,17 @@ fn forces_at_iterate(
     if let Some(sb) = &model.seabed {
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
-            // The trial history `t.next` is kept only in the pass expected to converge (copying
-            // it at every evaluation cost more than evaluating it again in [`commit`]).
-            let t = sb.seabed.evaluate(&committed[i], z, zdot, dt);
-            if keep {
-                ws.trial_history[i] = t.next;
-            }
+            // The trial history is kept only in the pass expected to converge (copying it at
+            // every evaluation cost more than evaluating it again in [`commit`]).
+            let t = if keep {
+                let next = &mut ws.trial_history[i];
+                sb.seabed
+                    .response_and_next(&committed[i], z, zdot, dt, next)
+            } else {
+                sb.seabed.response(&committed[i], z, zdot, dt)
+            };
             let l = model.tributary[i];
-            let up = t.total();
+            let up = t.total;
             let mut k = t.tangent;
             let mut c = t.damping_coefficient;
             ws.seabed_force[i] = up;

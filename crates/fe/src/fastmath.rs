@@ -182,23 +182,41 @@ pub fn atan2_lanes<const L: usize>(y: &[f64; L], x: &[f64; L], out: &mut [f64; L
         // `!(a < 2⁶⁶)` also catches a NaN (from x = 0 = y or a NaN argument); x = 0 alone gives ∞.
         special[k] = !(a[k] < TWO_POW_66) | (x[k] == 0.0);
     }
-    let (mut t, mut hi, mut lo) = ([0.0; L], [0.0; L], [0.0; L]);
+    // One operation over the lanes per loop: each loop becomes one vector instruction.
+    let mut num = [-1.0; L];
+    let mut den = a;
+    let mut hi = [HI[3]; L];
+    let mut lo = [LO[3]; L];
     for k in 0..L {
-        let a = a[k];
-        let (c0, c1, c2, c3) = (a < 0.4375, a < 0.6875, a < 1.1875, a < 2.4375);
-        let num = if c3 { a - 1.5 } else { -1.0 };
-        let num = if c2 { a - 1.0 } else { num };
-        let num = if c1 { 2.0 * a - 1.0 } else { num };
-        let num = if c0 { a } else { num };
-        let den = if c3 { 1.0 + 1.5 * a } else { a };
-        let den = if c2 { a + 1.0 } else { den };
-        let den = if c1 { 2.0 + a } else { den };
-        let den = if c0 { 1.0 } else { den };
+        let c3 = a[k] < 2.4375;
+        num[k] = if c3 { a[k] - 1.5 } else { num[k] };
+        den[k] = if c3 { 1.0 + 1.5 * a[k] } else { den[k] };
+        hi[k] = if c3 { HI[2] } else { hi[k] };
+        lo[k] = if c3 { LO[2] } else { lo[k] };
+    }
+    for k in 0..L {
+        let c2 = a[k] < 1.1875;
+        num[k] = if c2 { a[k] - 1.0 } else { num[k] };
+        den[k] = if c2 { a[k] + 1.0 } else { den[k] };
+        hi[k] = if c2 { HI[1] } else { hi[k] };
+        lo[k] = if c2 { LO[1] } else { lo[k] };
+    }
+    for k in 0..L {
+        let c1 = a[k] < 0.6875;
+        num[k] = if c1 { 2.0 * a[k] - 1.0 } else { num[k] };
+        den[k] = if c1 { 2.0 + a[k] } else { den[k] };
+        hi[k] = if c1 { HI[0] } else { hi[k] };
+        lo[k] = if c1 { LO[0] } else { lo[k] };
+    }
+    let mut t = [0.0; L];
+    for k in 0..L {
+        let c0 = a[k] < 0.4375;
+        num[k] = if c0 { a[k] } else { num[k] };
+        den[k] = if c0 { 1.0 } else { den[k] };
+    }
+    for k in 0..L {
         // t = a exactly in the first reduction (a / 1).
-        t[k] = num / den;
-        let (h, l) = if c3 { (HI[2], LO[2]) } else { (HI[3], LO[3]) };
-        let (h, l) = if c2 { (HI[1], LO[1]) } else { (h, l) };
-        (hi[k], lo[k]) = if c1 { (HI[0], LO[0]) } else { (h, l) };
+        t[k] = num[k] / den[k];
     }
     for k in 0..L {
         let t = t[k];

@@ -104,6 +104,18 @@ impl SeabedTrial {
     }
 }
 
+/// What a residual needs of a trial ([`Seabed::response`]): [`SeabedTrial`] without the branch and
+/// the next history.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeabedResponse {
+    /// `P + F_b + F_d`, N/m (upward): [`SeabedTrial::total`].
+    pub total: f64,
+    /// [`SeabedTrial::tangent`], N/m².
+    pub tangent: f64,
+    /// [`SeabedTrial::damping_coefficient`], N·s/m².
+    pub damping_coefficient: f64,
+}
+
 impl Seabed {
     /// The contact diameter of the law, m.
     pub fn diameter(&self) -> f64 {
@@ -118,6 +130,60 @@ impl Seabed {
         match &self.law {
             Law::Linear(_) => SeabedHistory::Linear(LinearHistory::default()),
             Law::RandolphQuiggin(_) => SeabedHistory::RandolphQuiggin(RqHistory::untouched(0.0)),
+        }
+    }
+
+    /// The force of the trial [`Seabed::evaluate`] makes, without its next history: the same
+    /// values, the linear law's computed in line (a residual evaluates every node; the commit takes
+    /// the histories).
+    #[inline]
+    pub fn response(&self, h: &SeabedHistory, z: f64, z_rate: f64, dt: f64) -> SeabedResponse {
+        match (&self.law, h) {
+            (Law::Linear(l), SeabedHistory::Linear(_)) => {
+                let ((p, dp), (fd, dfd)) = (l.force(z), l.damping_force(z, z_rate));
+                let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
+                SeabedResponse {
+                    total: p + buoyancy + fd,
+                    tangent: dp + db,
+                    damping_coefficient: dfd,
+                }
+            }
+            _ => {
+                let t = self.evaluate(h, z, z_rate, dt);
+                SeabedResponse {
+                    total: t.total(),
+                    tangent: t.tangent,
+                    damping_coefficient: t.damping_coefficient,
+                }
+            }
+        }
+    }
+
+    /// [`Seabed::response`], writing the trial's next history into `next` (the linear law's in
+    /// line, without the copy of a whole [`SeabedTrial`]).
+    #[inline]
+    pub fn response_and_next(
+        &self,
+        h: &SeabedHistory,
+        z: f64,
+        z_rate: f64,
+        dt: f64,
+        next: &mut SeabedHistory,
+    ) -> SeabedResponse {
+        match (&self.law, h) {
+            (Law::Linear(_), SeabedHistory::Linear(l)) => {
+                *next = SeabedHistory::Linear(l.next(z));
+                self.response(h, z, z_rate, dt)
+            }
+            _ => {
+                let t = self.evaluate(h, z, z_rate, dt);
+                *next = t.next;
+                SeabedResponse {
+                    total: t.total(),
+                    tangent: t.tangent,
+                    damping_coefficient: t.damping_coefficient,
+                }
+            }
         }
     }
 
@@ -140,8 +206,7 @@ impl Seabed {
             }
             (Law::RandolphQuiggin(_), _) => return self.evaluate(&self.untouched(), z, z_rate, dt),
             (Law::Linear(l), SeabedHistory::Linear(h)) => {
-                let (p, dp) = l.force(z);
-                let (fd, dfd) = l.damping_force(z, z_rate);
+                let ((p, dp), (fd, dfd)) = (l.force(z), l.damping_force(z, z_rate));
                 (
                     p,
                     dp,
@@ -185,5 +250,51 @@ fn linear_branch(z: f64) -> Branch {
         Branch::Backbone
     } else {
         Branch::NoContact
+    }
+}
+
+#[cfg(test)]
+mod response_tests {
+    use super::*;
+    use crate::rq::RqParams;
+    use crate::{LinearSeabed, RandolphQuiggin, SoilBuoyancy};
+
+    /// Along a cyclic path (penetration, uplift past lift-off, repenetration), committing each
+    /// trial: `response` and `response_and_next` give `evaluate`'s values to the bit, for both laws
+    /// with and without soil buoyancy and damping.
+    #[test]
+    fn the_response_is_the_trials_to_the_bit() {
+        let d = 0.2286;
+        let buoyancy = SoilBuoyancy::new(d, 1.5, 1500.0, 1025.0).expect("valid");
+        let laws = [
+            Law::Linear(LinearSeabed::new(d, 1.0e5, 0.0).expect("valid")),
+            Law::Linear(LinearSeabed::new(d, 1.0e5, 3.0e3).expect("valid")),
+            Law::RandolphQuiggin(RandolphQuiggin::new(RqParams::table1()).expect("valid")),
+        ];
+        for law in laws {
+            for buoyancy in [None, Some(buoyancy)] {
+                let sb = Seabed { law, buoyancy };
+                let mut h = sb.untouched();
+                let mut z_prev = 0.0;
+                for k in 0..400 {
+                    let z = d * (0.3 * (k as f64 * 0.07).sin() + 0.1 - 1e-3 * k as f64);
+                    let rate = (z - z_prev) / 0.05;
+                    let t = sb.evaluate(&h, z, rate, 0.05);
+                    let r = sb.response(&h, z, rate, 0.05);
+                    let mut next = sb.untouched();
+                    let rn = sb.response_and_next(&h, z, rate, 0.05, &mut next);
+                    for x in [r, rn] {
+                        assert_eq!(x.total.to_bits(), t.total().to_bits(), "{k}");
+                        assert_eq!(x.tangent.to_bits(), t.tangent.to_bits(), "{k}");
+                        assert_eq!(
+                            x.damping_coefficient.to_bits(),
+                            t.damping_coefficient.to_bits()
+                        );
+                    }
+                    assert_eq!(next, t.next, "{k}");
+                    (h, z_prev) = (t.next, z);
+                }
+            }
+        }
     }
 }

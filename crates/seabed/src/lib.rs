@@ -34,7 +34,7 @@ pub mod roots;
 pub mod rq;
 
 pub use buoyancy::SoilBuoyancy;
-pub use law::{Seabed, SeabedHistory, SeabedTrial};
+pub use law::{Seabed, SeabedHistory, SeabedResponse, SeabedTrial};
 pub use linear::{LinearHistory, LinearSeabed};
 pub use rq::{Mode, RandolphQuiggin, RqHistory, RqParams, RqTrial};
 

@@ -28,6 +28,7 @@ pub struct LinearHistory {
 
 impl LinearHistory {
     /// The history after a converged step at penetration `z`.
+    #[inline]
     pub fn next(&self, z: f64) -> Self {
         Self {
             z_prev: z,
