@@ -53,9 +53,10 @@
 //! derivative enters `C`; its dependence on the orientation is left out of the Jacobian.
 //!
 //! **Seabed.** Each node's trial is evaluated from its committed history, its penetration rate and
-//! Δt (pure); the histories are replaced by the trials' `next` only when the step converges (the
-//! commit evaluates the trials again at the converged iterate rather than keeping them from each
-//! residual evaluation: the same pure call, the same values). A
+//! Δt (pure); the histories are replaced by the trials' `next` only when the step converges. The
+//! residual pass after a fresh correction, which nearly always converges, writes each node's trial
+//! history into the workspace, and the commit takes them if that pass converged; otherwise it
+//! evaluates the trials again at the converged iterate (the same pure call, the same values). A
 //! failed attempt leaves the State untouched, and the step is retried with `Δt/2` (up to `max_cuts`
 //! times). A step that fails after every cut leaves the State exactly as it was before the step
 //! (step-level revert).
@@ -594,8 +595,8 @@ fn forces_at_iterate(
     if let Some(sb) = &model.seabed {
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
-            // The trial history is kept only in the pass expected to converge (copying it at
-            // every evaluation cost more than evaluating it again in [`commit`]).
+            // The trial history is kept only in the pass expected to converge; the others need
+            // the force alone.
             let t = if keep {
                 let next = &mut ws.trial_history[i];
                 sb.seabed
