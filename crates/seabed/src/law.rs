@@ -102,6 +102,15 @@ impl SeabedTrial {
     pub fn total(&self) -> f64 {
         self.resistance + self.buoyancy + self.damping
     }
+
+    /// What a residual needs of it.
+    pub fn response(&self) -> SeabedResponse {
+        SeabedResponse {
+            total: self.total(),
+            tangent: self.tangent,
+            damping_coefficient: self.damping_coefficient,
+        }
+    }
 }
 
 /// What a residual needs of a trial ([`Seabed::response`]): [`SeabedTrial`] without the branch and
@@ -148,14 +157,7 @@ impl Seabed {
                     damping_coefficient: dfd,
                 }
             }
-            _ => {
-                let t = self.evaluate(h, z, z_rate, dt);
-                SeabedResponse {
-                    total: t.total(),
-                    tangent: t.tangent,
-                    damping_coefficient: t.damping_coefficient,
-                }
-            }
+            _ => self.evaluate(h, z, z_rate, dt).response(),
         }
     }
 
@@ -178,11 +180,7 @@ impl Seabed {
             _ => {
                 let t = self.evaluate(h, z, z_rate, dt);
                 *next = t.next;
-                SeabedResponse {
-                    total: t.total(),
-                    tangent: t.tangent,
-                    damping_coefficient: t.damping_coefficient,
-                }
+                t.response()
             }
         }
     }
