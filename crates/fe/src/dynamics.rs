@@ -72,7 +72,7 @@
 //! largest displacement from the base (the second term is the rounding floor of the axial forces), or a relative residual below 1e-6 with a correction below
 //! 1e-10 m (machine-precision stagnation).
 
-use catena_seabed::law::SeabedHistory;
+use catena_seabed::law::{SeabedHistory, TrialMemo};
 use serde::{Deserialize, Serialize};
 
 use crate::assembly::{Assembler, LineResults, Placement};
@@ -373,6 +373,8 @@ pub struct DynWorkspace {
     /// them (`histories_kept`): the commit then takes them instead of evaluating them again.
     trial_history: Vec<SeabedHistory>,
     histories_kept: bool,
+    /// What each node's seabed trials keep between them ([`TrialMemo`]: a pure cache).
+    trial_memo: Vec<TrialMemo>,
     g: Vec<f64>,
     dq: Vec<f64>,
     u: Vec<f64>,
@@ -437,6 +439,7 @@ impl DynWorkspace {
             seabed_force: vec![0.0; n],
             trial_history: vec![untouched; n],
             histories_kept: false,
+            trial_memo: vec![TrialMemo::default(); n],
             g: vec![0.0; line.n_eq],
             dq: vec![0.0; line.n_eq],
             u: vec![0.0; 3 * n],
@@ -597,12 +600,13 @@ fn forces_at_iterate(
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
             // The trial history is kept only in the pass expected to converge; the others need
             // the force alone.
+            let memo = &mut ws.trial_memo[i];
             let t = if keep {
                 let next = &mut ws.trial_history[i];
                 sb.seabed
-                    .response_and_next(&committed[i], z, zdot, dt, next)
+                    .response_and_next(&committed[i], z, zdot, dt, (memo, next))
             } else {
-                sb.seabed.response(&committed[i], z, zdot, dt)
+                sb.seabed.response(&committed[i], z, zdot, dt, memo)
             };
             let l = model.tributary[i];
             let up = t.total;
@@ -1100,7 +1104,10 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
     } else if let Some(sb) = &model.seabed {
         for (i, h) in state.history.iter_mut().enumerate() {
             let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
-            *h = sb.seabed.evaluate(h, z, zdot, dt).next;
+            *h = sb
+                .seabed
+                .evaluate_with(h, z, zdot, dt, &mut ws.trial_memo[i])
+                .next;
         }
     }
     // Exchanged, not copied: the next attempt writes every entry of the iterate's u, v, a and f

@@ -19,7 +19,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::linear::LinearHistory;
-use crate::rq::{Branch, Mode, RandolphQuiggin, RqHistory};
+use crate::rq::{Branch, Mode, OnsetMemo, RandolphQuiggin, RqHistory};
 use crate::{LinearSeabed, SoilBuoyancy};
 
 /// The committed history of one node, of whichever law the seabed has.
@@ -113,6 +113,15 @@ impl SeabedTrial {
     }
 }
 
+/// What a node's trials may keep between them (a pure cache, one per node, in the caller's
+/// workspace: never part of the history, never changes a value): the Randolph–Quiggin law's last
+/// suction onset ([`crate::rq::OnsetMemo`]), which every trial of a step that starts an uplift
+/// needs from the same committed history.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TrialMemo {
+    onset: OnsetMemo,
+}
+
 /// What a residual needs of a trial ([`Seabed::response`]): [`SeabedTrial`] without the branch and
 /// the next history.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,9 +153,16 @@ impl Seabed {
 
     /// The force of the trial [`Seabed::evaluate`] makes, without its next history: the same
     /// values, the linear law's computed in line (a residual evaluates every node; the commit takes
-    /// the histories).
+    /// the histories); `memo` is the node's [`TrialMemo`].
     #[inline]
-    pub fn response(&self, h: &SeabedHistory, z: f64, z_rate: f64, dt: f64) -> SeabedResponse {
+    pub fn response(
+        &self,
+        h: &SeabedHistory,
+        z: f64,
+        z_rate: f64,
+        dt: f64,
+        memo: &mut TrialMemo,
+    ) -> SeabedResponse {
         match (&self.law, h) {
             (Law::Linear(l), SeabedHistory::Linear(_)) => {
                 let ((p, dp), (fd, dfd)) = (l.force(z), l.damping_force(z, z_rate));
@@ -157,12 +173,27 @@ impl Seabed {
                     damping_coefficient: dfd,
                 }
             }
-            _ => self.evaluate(h, z, z_rate, dt).response(),
+            (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
+                self.rq_response(&rq.evaluate_with(h, z, &mut memo.onset), z)
+            }
+            _ => self.evaluate_with(h, z, z_rate, dt, memo).response(),
+        }
+    }
+
+    /// What [`Seabed::evaluate`] makes of a Randolph–Quiggin trial, without building the
+    /// [`SeabedTrial`] (the same sums: no damping, `+ 0` included).
+    #[inline]
+    fn rq_response(&self, t: &crate::RqTrial, z: f64) -> SeabedResponse {
+        let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
+        SeabedResponse {
+            total: t.p + buoyancy + 0.0,
+            tangent: t.tangent + db,
+            damping_coefficient: 0.0,
         }
     }
 
     /// [`Seabed::response`], writing the trial's next history into `next` (the linear law's in
-    /// line, without the copy of a whole [`SeabedTrial`]).
+    /// line, without the copy of a whole [`SeabedTrial`]); `memo` is the node's [`TrialMemo`].
     #[inline]
     pub fn response_and_next(
         &self,
@@ -170,15 +201,20 @@ impl Seabed {
         z: f64,
         z_rate: f64,
         dt: f64,
-        next: &mut SeabedHistory,
+        (memo, next): (&mut TrialMemo, &mut SeabedHistory),
     ) -> SeabedResponse {
         match (&self.law, h) {
             (Law::Linear(_), SeabedHistory::Linear(l)) => {
                 *next = SeabedHistory::Linear(l.next(z));
-                self.response(h, z, z_rate, dt)
+                self.response(h, z, z_rate, dt, memo)
+            }
+            (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(hr)) => {
+                let t = rq.evaluate_with(hr, z, &mut memo.onset);
+                *next = SeabedHistory::RandolphQuiggin(t.next);
+                self.rq_response(&t, z)
             }
             _ => {
-                let t = self.evaluate(h, z, z_rate, dt);
+                let t = self.evaluate_with(h, z, z_rate, dt, memo);
                 *next = t.next;
                 t.response()
             }
@@ -189,10 +225,22 @@ impl Seabed {
     /// `dt` (s), from the committed history `h` (pure). A history of another law than this one (which
     /// a checked scene and checkpoint never give) is read as an untouched node.
     pub fn evaluate(&self, h: &SeabedHistory, z: f64, z_rate: f64, dt: f64) -> SeabedTrial {
+        self.evaluate_with(h, z, z_rate, dt, &mut TrialMemo::default())
+    }
+
+    /// [`Seabed::evaluate`] with a node's [`TrialMemo`] (the same values to the bit).
+    pub fn evaluate_with(
+        &self,
+        h: &SeabedHistory,
+        z: f64,
+        z_rate: f64,
+        dt: f64,
+        memo: &mut TrialMemo,
+    ) -> SeabedTrial {
         let _ = dt; // No law of catena's is rate-dependent beyond linear damping yet.
         let (resistance, tangent, branch, next, damping, c) = match (&self.law, h) {
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
-                let t = rq.evaluate(h, z);
+                let t = rq.evaluate_with(h, z, &mut memo.onset);
                 (
                     t.p,
                     t.tangent,
@@ -202,7 +250,9 @@ impl Seabed {
                     0.0,
                 )
             }
-            (Law::RandolphQuiggin(_), _) => return self.evaluate(&self.untouched(), z, z_rate, dt),
+            (Law::RandolphQuiggin(_), _) => {
+                return self.evaluate_with(&self.untouched(), z, z_rate, dt, memo)
+            }
             (Law::Linear(l), SeabedHistory::Linear(h)) => {
                 let ((p, dp), (fd, dfd)) = (l.force(z), l.damping_force(z, z_rate));
                 (
@@ -278,9 +328,15 @@ mod response_tests {
                     let z = d * (0.3 * (k as f64 * 0.07).sin() + 0.1 - 1e-3 * k as f64);
                     let rate = (z - z_prev) / 0.05;
                     let t = sb.evaluate(&h, z, rate, 0.05);
-                    let r = sb.response(&h, z, rate, 0.05);
+                    // Two trials of one step share the node's memo: the second, at another z
+                    // from the same history, as Newton's next iterate does.
+                    let mut memo = TrialMemo::default();
+                    let r0 = sb.response(&h, z + 1e-4, rate, 0.05, &mut memo);
+                    let t0 = sb.evaluate(&h, z + 1e-4, rate, 0.05);
+                    assert_eq!(r0.total.to_bits(), t0.total().to_bits(), "{k}");
+                    let r = sb.response(&h, z, rate, 0.05, &mut memo);
                     let mut next = sb.untouched();
-                    let rn = sb.response_and_next(&h, z, rate, 0.05, &mut next);
+                    let rn = sb.response_and_next(&h, z, rate, 0.05, (&mut memo, &mut next));
                     for x in [r, rn] {
                         assert_eq!(x.total.to_bits(), t.total().to_bits(), "{k}");
                         assert_eq!(x.tangent.to_bits(), t.tangent.to_bits(), "{k}");
@@ -294,5 +350,33 @@ mod response_tests {
                 }
             }
         }
+    }
+
+    /// One memo for trials from two histories that differ only in `P_prev`, in turn: each gets
+    /// its own suction onset (the memo is keyed on both), the same trial as without the memo.
+    #[test]
+    fn the_onset_memo_is_keyed_on_the_history() {
+        let rq = RandolphQuiggin::new(RqParams::table1()).expect("valid");
+        let mut h = crate::RqHistory::untouched(0.0);
+        h.mode = Mode::InitialPenetration;
+        h.contacted = true;
+        h.z_prev = 0.05;
+        h.z_max = 0.05;
+        let (mut a, mut b) = (h, h);
+        a.p_prev = rq.pu(0.05).0;
+        b.p_prev = 0.5 * a.p_prev;
+        let mut memo = OnsetMemo::default();
+        // Uplifts past the onsets (a few D/Kmax), so that every trial needs its onset.
+        for (hist, z) in [(a, 0.03), (b, 0.03), (a, 0.02), (b, 0.025)] {
+            let with = rq.evaluate_with(&hist, z, &mut memo);
+            let fresh = rq.evaluate(&hist, z);
+            assert_eq!(with.next, fresh.next);
+            assert_eq!(with.p.to_bits(), fresh.p.to_bits());
+            assert!(!with.next.z_c_pending && with.next.z_c.is_some());
+        }
+        assert_ne!(
+            rq.evaluate(&a, 0.03).next.z_c,
+            rq.evaluate(&b, 0.03).next.z_c
+        );
     }
 }

@@ -34,9 +34,9 @@ pub mod roots;
 pub mod rq;
 
 pub use buoyancy::SoilBuoyancy;
-pub use law::{Seabed, SeabedHistory, SeabedResponse, SeabedTrial};
+pub use law::{Seabed, SeabedHistory, SeabedResponse, SeabedTrial, TrialMemo};
 pub use linear::{LinearHistory, LinearSeabed};
-pub use rq::{Mode, RandolphQuiggin, RqHistory, RqParams, RqTrial};
+pub use rq::{Mode, OnsetMemo, RandolphQuiggin, RqHistory, RqParams, RqTrial};
 
 /// Standard gravity, m/s² (the value `cases.md` prescribes).
 pub const G: f64 = 9.80665;

@@ -216,14 +216,65 @@ pub struct RqHistory {
     pub p0: f64,
     /// `z0` of the preceding uplift (uplift episodes carry their own `z0` here), m.
     pub z_star: Option<f64>,
-    /// Where suction starts in the current uplift episode, m.
+    /// Where suction starts in the current uplift episode, m (see `z_c_pending`).
     pub z_c: Option<f64>,
+    /// `z_c` not computed yet: it is [`RandolphQuiggin::suction_onset`]`(z0, P0)` of the episode,
+    /// and no trial has needed it so far (the uplift has not come near it). Computed when a trial
+    /// first does, to the same value; most uplifts of a node resting on the seabed reverse long
+    /// before (`false` in checkpoints written before the field existed).
+    #[serde(default)]
+    pub z_c_pending: bool,
     /// Largest penetration ever, statics included, m.
     pub z_max: f64,
     /// Largest penetration at which suction has started in any uplift, m (0 until it first occurs).
     pub z_p0: f64,
     /// Has the node ever been in contact.
     pub contacted: bool,
+}
+
+/// The last [`RandolphQuiggin::suction_onset`] a node's trials computed and the committed
+/// `(z_prev, P_prev)` it was computed from (their bits): every trial of a step that starts an
+/// uplift needs the same onset, from the same committed history, and its scan is the law's most
+/// expensive part. A pure cache: a trial with or without it gives the same values to the bit.
+/// Scratch of the caller's (one per node), never part of the history.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OnsetMemo {
+    last: Option<((u64, u64), Option<f64>)>,
+}
+
+/// What a trial at `z` knows of its uplift's suction onset.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Onset {
+    /// The onset ([`RandolphQuiggin::suction_onset`]).
+    Known(Option<f64>),
+    /// Below `z`, or none: the trial's force does not depend on it.
+    Below,
+}
+
+impl OnsetMemo {
+    /// [`RandolphQuiggin::suction_onset`]`(z0, p0)`, from the memo when it holds that pair.
+    fn onset(&mut self, law: &RandolphQuiggin, z0: f64, p0: f64) -> Option<f64> {
+        match self.onset_at(law, z0, p0, f64::NEG_INFINITY) {
+            Onset::Known(z_c) => z_c,
+            Onset::Below => unreachable!("a scan to the mudline decides the onset"),
+        }
+    }
+
+    /// The onset as far as a trial at `z` needs it ([`RandolphQuiggin::scan_onset`]), from the
+    /// memo when it holds that pair; an onset found is kept.
+    fn onset_at(&mut self, law: &RandolphQuiggin, z0: f64, p0: f64, z: f64) -> Onset {
+        let key = (z0.to_bits(), p0.to_bits());
+        match self.last {
+            Some((k, z_c)) if k == key => Onset::Known(z_c),
+            _ => {
+                let o = law.scan_onset(z0, p0, z);
+                if let Onset::Known(z_c) = o {
+                    self.last = Some((key, z_c));
+                }
+                o
+            }
+        }
+    }
 }
 
 impl RqHistory {
@@ -237,6 +288,7 @@ impl RqHistory {
             p0: 0.0,
             z_star: None,
             z_c: None,
+            z_c_pending: false,
             z_max: 0.0,
             z_p0: 0.0,
             contacted: false,
@@ -363,6 +415,7 @@ impl RandolphQuiggin {
                 p0: 0.0,
                 z_star: None,
                 z_c: None,
+                z_c_pending: false,
                 z_max: z_s,
                 z_p0: 0.0,
                 contacted: true,
@@ -400,13 +453,30 @@ impl RandolphQuiggin {
     /// change to machine precision by Newton's method kept inside the bracket ([`bracketed_root`]).
     /// A pair of roots closer together than the scan step could be missed; that needs `P5` to graze
     /// zero, where suction is negligible anyway.
+    ///
+    /// A scan point is evaluated only when `P5` could be `≤ 0` there: with `Pu` increasing in `z`,
+    /// at an uplift `u` `P5 ≥ P0 − u/(A_min + u)·B0`, `A_min = P0/Pu(z0)`, `B0 = P0 + f_suc·Pu(z0)`;
+    /// while that bound exceeds `10⁻¹²·B0` (far above rounding) the point is passed over. The
+    /// scan's points and the bracket it closes are the same, so the onset is the same to the bit
+    /// (`the_onset_scan_skips_only_positive_points`).
     pub fn suction_onset(&self, z0: f64, p0: f64) -> Option<f64> {
+        match self.scan_onset(z0, p0, f64::NEG_INFINITY) {
+            Onset::Known(z_c) => z_c,
+            Onset::Below => unreachable!("a scan to the mudline decides the onset"),
+        }
+    }
+
+    /// The onset's scan, stopped when it passes below `z` without a sign change: the onset is then
+    /// below `z` or absent, which is all a trial at `z` needs ([`Onset::Below`]). Otherwise the
+    /// onset of [`RandolphQuiggin::suction_onset`], the same to the bit (the same points, the same
+    /// first bracket).
+    fn scan_onset(&self, z0: f64, p0: f64, z: f64) -> Onset {
         if p0 <= 0.0 {
-            return Some(z0);
+            return Onset::Known(Some(z0));
         }
         if self.p.f_suc <= 0.0 {
             // B = P0 > 0, so P5 = P0·(1 − h) > 0 for every finite uplift.
-            return None;
+            return Onset::Known(None);
         }
         let pu0 = self.pu(z0).0;
         let unit = 1.0 / self.k;
@@ -414,14 +484,23 @@ impl RandolphQuiggin {
         // Never zero, even when D/Kmax underflows (`hi − 0 = hi` would scan for ever).
         let mut step = (1e-3 * unit).clamp(1e-3 * max_step, max_step);
         let mut hi = z0; // P5(hi) > 0
+        let (a_min, b0) = (p0 / pu0, p0 + self.p.f_suc * pu0);
+        let positive = |lo: f64| {
+            let u = self.k * (z0 - lo);
+            pu0 > 0.0 && p0 - u / (a_min + u) * b0 > 1e-12 * b0
+        };
         loop {
             if hi <= 0.0 {
-                return None;
+                return Onset::Known(None);
             }
             let lo = (hi - step).max(0.0);
-            if lo > 0.0 && self.p5(z0, p0, pu0, lo).0 <= 0.0 {
+            if lo > 0.0 && !positive(lo) && self.p5(z0, p0, pu0, lo).0 <= 0.0 {
                 // P5(lo) <= 0 < P5(hi): the root, as the bracket's upper end.
-                return Some(bracketed_root(|z| self.p5(z0, p0, pu0, z), lo, hi));
+                return Onset::Known(Some(bracketed_root(|z| self.p5(z0, p0, pu0, z), lo, hi)));
+            }
+            if lo < z {
+                // Any root is below lo, so below z.
+                return Onset::Below;
             }
             hi = lo;
             step = (step * 2.0).min(max_step);
@@ -550,6 +629,12 @@ impl RandolphQuiggin {
     ///   `z ≤ 0` is lift-off, recording `z_P0 = max(z_P0, z_c)`;
     /// - `z == z_prev` keeps the mode.
     pub fn evaluate(&self, h: &RqHistory, z: f64) -> RqTrial {
+        self.evaluate_with(h, z, &mut OnsetMemo::default())
+    }
+
+    /// [`RandolphQuiggin::evaluate`], taking the suction onset from `memo` when it holds the one
+    /// this history needs (the same values to the bit).
+    pub fn evaluate_with(&self, h: &RqHistory, z: f64, memo: &mut OnsetMemo) -> RqTrial {
         match h.mode {
             Mode::NotInContact => {
                 if z <= 0.0 {
@@ -562,12 +647,13 @@ impl RandolphQuiggin {
             }
             Mode::InitialPenetration | Mode::Repenetration => {
                 if z < h.z_prev {
-                    let z_c = self.suction_onset(h.z_prev, h.p_prev);
                     if z <= 0.0 {
+                        let z_c = memo.onset(self, h.z_prev, h.p_prev);
                         let z_p0 = z_c.map_or(h.z_p0, |zc| h.z_p0.max(zc));
                         self.lift_off(h, z_p0, z)
                     } else {
-                        self.uplift_trial(h, h.z_prev, h.p_prev, z_c, z)
+                        let onset = memo.onset_at(self, h.z_prev, h.p_prev, z);
+                        self.uplift_trial(h, h.z_prev, h.p_prev, onset, z)
                     }
                 } else if h.mode == Mode::InitialPenetration {
                     self.backbone(h, z)
@@ -579,10 +665,20 @@ impl RandolphQuiggin {
                 if z > h.z_prev {
                     self.repen_trial(h, h.z_prev, h.p_prev, Some(h.z0), z)
                 } else if z <= 0.0 {
-                    let z_p0 = h.z_c.map_or(h.z_p0, |zc| h.z_p0.max(zc));
+                    let z_c = if h.z_c_pending {
+                        memo.onset(self, h.z0, h.p0)
+                    } else {
+                        h.z_c
+                    };
+                    let z_p0 = z_c.map_or(h.z_p0, |zc| h.z_p0.max(zc));
                     self.lift_off(h, z_p0, z)
                 } else {
-                    self.uplift_trial(h, h.z0, h.p0, h.z_c, z)
+                    let onset = if h.z_c_pending {
+                        memo.onset_at(self, h.z0, h.p0, z)
+                    } else {
+                        Onset::Known(h.z_c)
+                    };
+                    self.uplift_trial(h, h.z0, h.p0, onset, z)
                 }
             }
         }
@@ -601,6 +697,7 @@ impl RandolphQuiggin {
                 p0: 0.0,
                 z_star: None,
                 z_c: None,
+                z_c_pending: false,
                 z_max: h.z_max,
                 z_p0,
                 contacted: h.contacted,
@@ -622,6 +719,7 @@ impl RandolphQuiggin {
                 p0: 0.0,
                 z_star: None,
                 z_c: None,
+                z_c_pending: false,
                 z_max: h.z_max.max(z),
                 z_p0: h.z_p0,
                 contacted: true,
@@ -629,7 +727,12 @@ impl RandolphQuiggin {
         }
     }
 
-    fn uplift_trial(&self, h: &RqHistory, z0: f64, p0: f64, z_c: Option<f64>, z: f64) -> RqTrial {
+    fn uplift_trial(&self, h: &RqHistory, z0: f64, p0: f64, onset: Onset, z: f64) -> RqTrial {
+        // An onset below z leaves the force as no onset does; it stays to be found.
+        let (z_c, z_c_pending) = match onset {
+            Onset::Known(z_c) => (z_c, false),
+            Onset::Below => (None, true),
+        };
         let (p, tangent, branch, z_p0) = self.uplift(z0, p0, z_c, h.z_p0, h.z_max, z);
         RqTrial {
             p,
@@ -643,6 +746,7 @@ impl RandolphQuiggin {
                 p0,
                 z_star: Some(z0),
                 z_c,
+                z_c_pending,
                 z_max: h.z_max.max(z),
                 z_p0,
                 contacted: true,
@@ -664,6 +768,7 @@ impl RandolphQuiggin {
                 p0,
                 z_star,
                 z_c: None,
+                z_c_pending: false,
                 z_max: h.z_max.max(z),
                 z_p0: h.z_p0,
                 contacted: true,
@@ -673,3 +778,129 @@ impl RandolphQuiggin {
 }
 
 pub use crate::roots::bracketed_root;
+
+#[cfg(test)]
+mod onset_tests {
+    use super::*;
+    use crate::roots::bracketed_root;
+
+    /// The scan as it was before points were passed over: every point evaluated.
+    fn onset_every_point(l: &RandolphQuiggin, z0: f64, p0: f64) -> Option<f64> {
+        if p0 <= 0.0 {
+            return Some(z0);
+        }
+        if l.p.f_suc <= 0.0 {
+            return None;
+        }
+        let pu0 = l.pu(z0).0;
+        let unit = 1.0 / l.k;
+        let max_step = (0.25 * unit).max(1e-5 * l.p.diameter);
+        let mut step = (1e-3 * unit).clamp(1e-3 * max_step, max_step);
+        let mut hi = z0;
+        loop {
+            if hi <= 0.0 {
+                return None;
+            }
+            let lo = (hi - step).max(0.0);
+            if lo > 0.0 && l.p5(z0, p0, pu0, lo).0 <= 0.0 {
+                return Some(bracketed_root(|z| l.p5(z0, p0, pu0, z), lo, hi));
+            }
+            hi = lo;
+            step = (step * 2.0).min(max_step);
+        }
+    }
+
+    /// Over soils from Table 1's to a stiff clay with zero surface strength, suction factors from
+    /// 0.05 to 1, episode starts from a hundredth of D to one D deep and resistances from a
+    /// thousandth of `Pu` to above it: the onset is the one of the scan that evaluates every point,
+    /// to the bit.
+    #[test]
+    fn the_onset_scan_skips_only_positive_points() {
+        let mut cases = 0;
+        for (su0, gradient, b, k_max) in [
+            (1000.0, 1300.0, 0.25, 200.0),
+            (0.0, 6000.0, 0.35, 400.0),
+            (5000.0, 0.0, 0.15, 100.0),
+        ] {
+            for f_suc in [0.05, 0.2, 0.6, 1.0] {
+                for lambda_suc in [0.2, 1.0] {
+                    let l = RandolphQuiggin::new(RqParams {
+                        su0,
+                        su_gradient: gradient,
+                        b,
+                        k_max,
+                        f_suc,
+                        lambda_suc,
+                        ..RqParams::table1()
+                    })
+                    .expect("valid");
+                    let d = l.p.diameter;
+                    for z0 in [0.01 * d, 0.1 * d, 0.37 * d, d] {
+                        let pu0 = l.pu(z0).0;
+                        for share in [1e-3, 0.1, 0.5, 0.9, 1.0, 1.3] {
+                            let p0 = share * pu0;
+                            let (new, old) =
+                                (l.suction_onset(z0, p0), onset_every_point(&l, z0, p0));
+                            assert_eq!(new.map(f64::to_bits), old.map(f64::to_bits), "{z0} {p0}");
+                            cases += usize::from(old.is_some());
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cases > 200, "{cases} onsets found");
+    }
+
+    /// An uplift whose onset is still to be found gives, at every penetration (above the onset,
+    /// past it, in the lift-off band, lifted off), the force, tangent, branch and next history of
+    /// the same uplift with its onset computed at the start, to the bit; it finds the onset when a
+    /// trial first needs it.
+    #[test]
+    fn a_pending_onset_is_the_onset() {
+        for f_suc in [0.2, 0.6, 1.0] {
+            let l = RandolphQuiggin::new(RqParams {
+                f_suc,
+                ..RqParams::table1()
+            })
+            .expect("valid");
+            let z0 = 0.05;
+            let p0 = l.p_ip(z0).0;
+            let z_c = l.suction_onset(z0, p0);
+            assert!(z_c.is_some());
+            let eager = RqHistory {
+                mode: Mode::Uplift,
+                z_prev: z0,
+                p_prev: p0,
+                z0,
+                p0,
+                z_star: Some(z0),
+                z_c,
+                z_max: z0,
+                contacted: true,
+                ..RqHistory::untouched(0.0)
+            };
+            let lazy = RqHistory {
+                z_c: None,
+                z_c_pending: true,
+                ..eager
+            };
+            let mut found = 0;
+            for k in 0..=60 {
+                let z = z0 * (1.0 - k as f64 / 50.0);
+                let (e, p) = (l.evaluate(&eager, z), l.evaluate(&lazy, z));
+                assert_eq!(p.p.to_bits(), e.p.to_bits(), "{k}");
+                assert_eq!(p.tangent.to_bits(), e.tangent.to_bits(), "{k}");
+                assert_eq!(p.branch, e.branch, "{k}");
+                let mut n = p.next;
+                if n.z_c_pending {
+                    assert!(z > z_c.expect("onset"), "pending at {z}, past the onset");
+                    (n.z_c, n.z_c_pending) = (e.next.z_c, false);
+                } else {
+                    found += 1;
+                }
+                assert_eq!(n, e.next, "{k}");
+            }
+            assert!(found > 10, "{found}");
+        }
+    }
+}
