@@ -72,7 +72,7 @@
 //! largest displacement from the base (the second term is the rounding floor of the axial forces), or a relative residual below 1e-6 with a correction below
 //! 1e-10 m (machine-precision stagnation).
 
-use catena_seabed::law::{SeabedHistory, TrialMemo};
+use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 use serde::{Deserialize, Serialize};
 
 use crate::assembly::{Assembler, LineResults, Placement};
@@ -439,7 +439,10 @@ impl DynWorkspace {
             seabed_force: vec![0.0; n],
             trial_history: vec![untouched; n],
             histories_kept: false,
-            trial_memo: vec![TrialMemo::default(); n],
+            trial_memo: match line.seabed.as_ref().map(|s| &s.seabed.law) {
+                Some(Law::RandolphQuiggin(_)) => vec![TrialMemo::default(); n],
+                _ => Vec::new(),
+            },
             g: vec![0.0; line.n_eq],
             dq: vec![0.0; line.n_eq],
             u: vec![0.0; 3 * n],
@@ -596,11 +599,13 @@ fn forces_at_iterate(
     }
     let n = model.nodes();
     if let Some(sb) = &model.seabed {
+        let mut spare = TrialMemo::default();
         for i in 0..n {
             let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
             // The trial history is kept only in the pass expected to converge; the others need
             // the force alone.
-            let memo = &mut ws.trial_memo[i];
+            // Only a law that keeps something has memos (the linear law's trials take `spare`).
+            let memo = ws.trial_memo.get_mut(i).unwrap_or(&mut spare);
             let t = if keep {
                 let next = &mut ws.trial_history[i];
                 sb.seabed
@@ -1102,11 +1107,18 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
         std::mem::swap(&mut state.history, &mut ws.trial_history);
         ws.histories_kept = false;
     } else if let Some(sb) = &model.seabed {
+        let mut spare = TrialMemo::default();
         for (i, h) in state.history.iter_mut().enumerate() {
             let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
             *h = sb
                 .seabed
-                .evaluate_with(h, z, zdot, dt, &mut ws.trial_memo[i])
+                .evaluate_with(
+                    h,
+                    z,
+                    zdot,
+                    dt,
+                    ws.trial_memo.get_mut(i).unwrap_or(&mut spare),
+                )
                 .next;
         }
     }

@@ -154,7 +154,7 @@ impl Seabed {
     /// The force of the trial [`Seabed::evaluate`] makes, without its next history: the same
     /// values, the linear law's computed in line (a residual evaluates every node; the commit takes
     /// the histories); `memo` is the node's [`TrialMemo`].
-    #[inline]
+    #[inline(always)]
     pub fn response(
         &self,
         h: &SeabedHistory,
@@ -174,16 +174,28 @@ impl Seabed {
                 }
             }
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
-                self.rq_response(&rq.evaluate_with(h, z, &mut memo.onset), z)
+                self.rq_response(rq, h, z, (memo, None))
             }
             _ => self.evaluate_with(h, z, z_rate, dt, memo).response(),
         }
     }
 
     /// What [`Seabed::evaluate`] makes of a Randolph–Quiggin trial, without building the
-    /// [`SeabedTrial`] (the same sums: no damping, `+ 0` included).
-    #[inline]
-    fn rq_response(&self, t: &crate::RqTrial, z: f64) -> SeabedResponse {
+    /// [`SeabedTrial`] (the same sums: no damping, `+ 0` included), and its next history into
+    /// `next` if given. Not inlined: the residual loop stays as small for the linear law as
+    /// without this arm.
+    #[inline(never)]
+    fn rq_response(
+        &self,
+        rq: &RandolphQuiggin,
+        h: &RqHistory,
+        z: f64,
+        (memo, next): (&mut TrialMemo, Option<&mut SeabedHistory>),
+    ) -> SeabedResponse {
+        let t = rq.evaluate_with(h, z, &mut memo.onset);
+        if let Some(next) = next {
+            *next = SeabedHistory::RandolphQuiggin(t.next);
+        }
         let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
         SeabedResponse {
             total: t.p + buoyancy + 0.0,
@@ -194,7 +206,7 @@ impl Seabed {
 
     /// [`Seabed::response`], writing the trial's next history into `next` (the linear law's in
     /// line, without the copy of a whole [`SeabedTrial`]); `memo` is the node's [`TrialMemo`].
-    #[inline]
+    #[inline(always)]
     pub fn response_and_next(
         &self,
         h: &SeabedHistory,
@@ -209,9 +221,7 @@ impl Seabed {
                 self.response(h, z, z_rate, dt, memo)
             }
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(hr)) => {
-                let t = rq.evaluate_with(hr, z, &mut memo.onset);
-                *next = SeabedHistory::RandolphQuiggin(t.next);
-                self.rq_response(&t, z)
+                self.rq_response(rq, hr, z, (memo, Some(next)))
             }
             _ => {
                 let t = self.evaluate_with(h, z, z_rate, dt, memo);

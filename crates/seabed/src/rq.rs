@@ -13,7 +13,9 @@
 //! `u = ζ0 − ζ`, `B = P0 − Pu_suc(z)`, `A_UL = B/Pu(z0)`, `P5 = P0 − u/(A_UL+u)·B` (or `Pu_suc` if `B ≤ 0`);
 //! `E_UL = exp(min(0, (z − z_P0,eff)/(λsuc·z_max,eff)))`, `P_min = E_UL·Pu_suc(z)`, **`P = max(P5, P_min)`**.
 //! `z_c`, where `P5` first reaches zero moving up from `z0`, is computed once per episode
-//! ([`RandolphQuiggin::suction_onset`]); once `z ≤ z_c`, `z_P0,eff = max(z_P0, z_c)`.
+//! ([`RandolphQuiggin::suction_onset`]), when a trial first needs it (the force depends on it only
+//! once `z ≤ z_c`, and lift-off records it: until then the history marks it pending,
+//! `RqHistory::z_c_pending`); once `z ≤ z_c`, `z_P0,eff = max(z_P0, z_c)`.
 //!
 //! **Repenetration (eqs 10–14)**, from `(z0, P0)`:
 //! `u = ζ − ζ0`, `Pu* = Pu(z)` if `P0 ≤ 0` or there is no `z*`, else `Pu(z*)`;
