@@ -891,7 +891,11 @@ fn attempt(
         let sq: f64 = ws
             .free_runs
             .iter()
-            .map(|&(g0, _, len)| sum_of_squares(&ws.g_all[g0..g0 + len]))
+            .map(|&(g0, _, len)| {
+                // Eight interleaved partial sums: one running sum is a chain of dependent additions.
+                let g = &ws.g_all[g0..g0 + len];
+                crate::fastmath::lane_dot(g, g)
+            })
             .sum();
         let r = sq.sqrt() / refn;
         if r.is_finite() && r > r_prev && backtracks < MAX_BACKTRACKS {
@@ -1000,25 +1004,6 @@ fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f
         asm.add_node_block(i, c_m * m[0], c_m * m[1], c_m * m[2]);
         asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
     }
-}
-
-/// `Σ x²`, in eight partial sums (one running sum is a chain of dependent additions, each waiting
-/// for the one before: the loop ran at the adder's latency). Its rounding differs from one running
-/// sum's by a few units in the last place.
-fn sum_of_squares(xs: &[f64]) -> f64 {
-    let mut acc = [0.0; 8];
-    let chunks = xs.chunks_exact(8);
-    let rest = chunks.remainder();
-    for c in chunks {
-        for (a, x) in acc.iter_mut().zip(c) {
-            *a += x * x;
-        }
-    }
-    let mut s = ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7]));
-    for x in rest {
-        s += x * x;
-    }
-    s
 }
 
 /// `max |x|` (0 for none; a NaN is passed over, as `f64::max` does), in eight partial maxima: the
@@ -1344,7 +1329,7 @@ mod tests {
         for n in [0, 1, 7, 8, 9, 100, 1203] {
             let x: Vec<f64> = values(n).into_iter().filter(|v| !v.is_nan()).collect();
             let running = x.iter().fold(0.0, |s, v| s + v * v);
-            let s = sum_of_squares(&x);
+            let s = crate::fastmath::lane_dot(&x, &x);
             assert!(
                 (s - running).abs() <= 1e-15 * running,
                 "n = {n}: {s} vs {running}"

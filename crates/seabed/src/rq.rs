@@ -253,13 +253,20 @@ enum Onset {
     Below,
 }
 
-impl OnsetMemo {
-    /// [`RandolphQuiggin::suction_onset`]`(z0, p0)`, from the memo when it holds that pair.
-    fn onset(&mut self, law: &RandolphQuiggin, z0: f64, p0: f64) -> Option<f64> {
-        match self.onset_at(law, z0, p0, f64::NEG_INFINITY) {
+impl Onset {
+    /// The onset of a scan run to the mudline (which always decides it).
+    fn decided(self) -> Option<f64> {
+        match self {
             Onset::Known(z_c) => z_c,
             Onset::Below => unreachable!("a scan to the mudline decides the onset"),
         }
+    }
+}
+
+impl OnsetMemo {
+    /// [`RandolphQuiggin::suction_onset`]`(z0, p0)`, from the memo when it holds that pair.
+    fn onset(&mut self, law: &RandolphQuiggin, z0: f64, p0: f64) -> Option<f64> {
+        self.onset_at(law, z0, p0, f64::NEG_INFINITY).decided()
     }
 
     /// The onset as far as a trial at `z` needs it ([`RandolphQuiggin::scan_onset`]), from the
@@ -462,10 +469,7 @@ impl RandolphQuiggin {
     /// scan's points and the bracket it closes are the same, so the onset is the same to the bit
     /// (`the_onset_scan_skips_only_positive_points`).
     pub fn suction_onset(&self, z0: f64, p0: f64) -> Option<f64> {
-        match self.scan_onset(z0, p0, f64::NEG_INFINITY) {
-            Onset::Known(z_c) => z_c,
-            Onset::Below => unreachable!("a scan to the mudline decides the onset"),
-        }
+        self.scan_onset(z0, p0, f64::NEG_INFINITY).decided()
     }
 
     /// The onset's scan, stopped when it passes below `z` without a sign change: the onset is then
