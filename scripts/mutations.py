@@ -1,45 +1,163 @@
 #!/usr/bin/env python3
-"""The safety net's mutation check (validation/safety-net.md): makes each deliberate bug in turn in a
-throw-away git worktree of HEAD, runs the whole test suite there, and prints one JSON line per
-mutation with the tests that failed. Every mutation must fail at least one test.
+"""The safety net's mutation check (validation/safety-net.md).
 
-Usage: python3 scripts/mutations.py [NAME ...]   (about 3 minutes per mutation on 2 cores)
+Each mutation in `scripts/mutations.toml` is a deliberate bug anchored to the code it breaks: one or
+more edits, each an exact text that must occur exactly once in its file. The check
+
+1. verifies that every anchor still applies (a mutation whose text is no longer in the code is an
+   error, never a skip: when the code moves, the mutation moves with it);
+2. makes each mutation alone, in place, builds the test targets it names and runs the tests it names
+   (`package:target:test`, target `lib` for unit tests), and restores the file whatever happens;
+3. fails unless every mutation compiles and at least one of its tests fails on it (a mutation that
+   does not compile tests nothing and is an error too).
+
+Only the named tests run, so a mutation costs one incremental release build of the crate it touches
+and of its test target (about a minute on 2 cores), not the whole suite.
+
+Usage:
+    python3 scripts/mutations.py [--check] [--write-doc] [NAME ...]
+      --check      only verify that every anchor applies (seconds)
+      --write-doc  rewrite the table in validation/safety-net.md from this run
 """
-import sys, subprocess, re, json, tempfile, os
-repo = subprocess.run(['git', 'rev-parse', '--show-toplevel'], capture_output=True, text=True, check=True).stdout.strip()
-tmp = tempfile.mkdtemp(prefix='catena-mutants-')
-root = os.path.join(tmp, 'tree')
-subprocess.run(['git', 'worktree', 'add', '-q', '--detach', root, 'HEAD'], cwd=repo, check=True)
-D='crates/fe/src/dynamics.rs'; S='crates/fe/src/assembly.rs'; E='crates/fe/src/environment.rs'
-muts = {
- 'flip-alpha': [(D, "ws.g[e] = inertia[k] + (1.0 + alpha) * ws.f[g] - alpha * state.f_prev[g];",
-                   "ws.g[e] = inertia[k] + (1.0 - alpha) * ws.f[g] + alpha * state.f_prev[g];")],
- 'zero-added-mass': [(D, "let ma = h.added_mass(model.node_od[i], model.tributary[i]);", "let ma = 0.0 * h.added_mass(model.node_od[i], model.tributary[i]);")],
- 'drop-drag': [(E, "let kn0 = 0.5 * self.water_density * self.cd_normal;", "let kn0 = 0.0 * self.water_density * self.cd_normal;"),
-               (E, "let ka0 = 0.5 * self.water_density * self.cd_axial * std::f64::consts::PI;", "let ka0 = 0.0 * self.water_density * self.cd_axial * std::f64::consts::PI;")],
- 'commit-every-iterate': [(D, """        forces_at_iterate(dm, &state.history, ws, !reuse, 1.0 + alpha, c_v, dt);""", """        forces_at_iterate(dm, &state.history, ws, !reuse, 1.0 + alpha, c_v, dt);
-        state.history.copy_from_slice(&ws.next);""")],
- 'top-at-t-plus-alpha-dt': [(D, "let prescribed = dm.motion.as_ref().map(|m| m.at(t1));", "let prescribed = dm.motion.as_ref().map(|m| m.at(t1 + alpha * dt));")],
- 'flexjoint-sign': [(S, "self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral);", "self.residual[g] -= fj.stiffness * (q[g] + u[g] - fj.neutral);"),
-                    (S, "self.k.values[self.diag_slots[eq]] += fj.stiffness;", "self.k.values[self.diag_slots[eq]] -= fj.stiffness;")],
-}
-names = sys.argv[1:] or list(muts)
-survivors = []
-for name in names:
-    subprocess.run(['git','checkout','-q','--','.'], cwd=root, check=True)
-    for f, a, b in muts[name]:
-        p = f'{root}/{f}'; s = open(p).read()
-        assert s.count(a) == 1, (name, a)
-        open(p,'w').write(s.replace(a,b))
-    r = subprocess.run('cargo test --release --workspace --all-targets --no-fail-fast 2>&1', shell=True, cwd=root, capture_output=True, text=True)
-    failed = re.findall(r'^test (\S+) \.\.\. FAILED', r.stdout, re.M)
-    # failing test binaries
-    bins = re.findall(r'error: test failed, to rerun pass `([^`]*)`', r.stdout)
-    print(json.dumps({'mutation': name, 'failed': failed, 'bins': bins}), flush=True)
-    if not failed:
-        survivors.append(name)
-subprocess.run(['git','checkout','-q','--','.'], cwd=root, check=True)
-subprocess.run(['git', 'worktree', 'remove', '--force', root], cwd=repo)
-if survivors:
-    print('mutations no test caught: ' + ', '.join(survivors))
-    sys.exit(1)
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+import tomllib
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SPEC = os.path.join(REPO, 'scripts', 'mutations.toml')
+DOC = os.path.join(REPO, 'validation', 'safety-net.md')
+BEGIN, END = '<!-- mutations:begin -->', '<!-- mutations:end -->'
+
+
+def load():
+    with open(SPEC, 'rb') as f:
+        spec = tomllib.load(f)
+    muts = spec.get('mutation', [])
+    names = [m['name'] for m in muts]
+    dup = {n for n in names if names.count(n) > 1}
+    if dup:
+        sys.exit(f'{SPEC}: mutation names repeated: {sorted(dup)}')
+    for m in muts:
+        for key in ('name', 'what', 'edit', 'tests'):
+            if key not in m:
+                sys.exit(f'{SPEC}: mutation {m.get("name", "?")!r} has no {key!r}')
+        for t in m['tests']:
+            if len(t.split(':', 2)) != 3 or not all(t.split(':', 2)):
+                sys.exit(f'{SPEC}: mutation {m["name"]!r}: test {t!r} is not package:target:test')
+    return muts
+
+
+def anchor_problems(m):
+    """Why the mutation no longer applies (empty when every edit's text occurs exactly once)."""
+    out = []
+    for e in m['edit']:
+        path = os.path.join(REPO, e['file'])
+        if not os.path.exists(path):
+            out.append(f'{e["file"]}: no such file')
+            continue
+        n = open(path).read().count(e['find'])
+        if n != 1:
+            out.append(f'{e["file"]}: the text to replace occurs {n} times (expected once):\n'
+                       + '\n'.join('      | ' + l for l in e['find'].splitlines()))
+        if e['find'] == e['replace']:
+            out.append(f'{e["file"]}: the replacement is the text itself')
+    return out
+
+
+def groups(tests):
+    """{(package, target): [test, ...]} in the order given."""
+    g = {}
+    for t in tests:
+        pkg, target, name = t.split(':', 2)
+        g.setdefault((pkg, target), []).append(name)
+    return g
+
+
+def run_mutation(m):
+    originals = {}
+    try:
+        for e in m['edit']:
+            path = os.path.join(REPO, e['file'])
+            originals.setdefault(path, open(path).read())
+            cur = open(path).read()
+            open(path, 'w').write(cur.replace(e['find'], e['replace'], 1))
+        failed, problems = [], []
+        for (pkg, target), names in groups(m['tests']).items():
+            sel = ['--lib'] if target == 'lib' else ['--test', target]
+            cmd = ['cargo', 'test', '--release', '-p', pkg, *sel, '--', '--exact', *names]
+            r = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True)
+            out = r.stdout + r.stderr
+            if 'error[E' in out or 'could not compile' in out:
+                problems.append(f'does not compile ({" ".join(cmd)}):\n' + out[-3000:])
+                continue
+            ran = re.findall(r'^test (\S+) \.\.\. (ok|FAILED|ignored)', out, re.M)
+            missing = [n for n in names if n not in {t for t, _ in ran}]
+            if missing:
+                problems.append(f'{pkg}:{target}: no such test(s) ran: {missing}')
+            failed += [f'{pkg}:{target}:{t}' for t, s in ran if s == 'FAILED']
+        return failed, problems
+    finally:
+        for path, text in originals.items():
+            open(path, 'w').write(text)
+
+
+def write_doc(rows):
+    doc = open(DOC).read()
+    if BEGIN not in doc or END not in doc:
+        sys.exit(f'{DOC}: the markers {BEGIN} / {END} are missing')
+    lines = ['| mutation | what it breaks | where | tests that catch it | s |', '|---|---|---|---|---|']
+    for m, failed, secs in rows:
+        where = ', '.join(sorted({f'`{e["file"]}`' for e in m['edit']}))
+        caught = ', '.join(f'`{t.split(":", 2)[2]}` ({t.split(":", 2)[1]})' for t in failed)
+        lines.append(f'| `{m["name"]}` | {m["what"]} | {where} | {caught} | {secs:.0f} |')
+    head, rest = doc.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    open(DOC, 'w').write(head + BEGIN + '\n' + '\n'.join(lines) + '\n' + END + tail)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--check', action='store_true')
+    ap.add_argument('--write-doc', action='store_true')
+    ap.add_argument('names', nargs='*')
+    a = ap.parse_args()
+    muts = load()
+    known = {m['name'] for m in muts}
+    unknown = [n for n in a.names if n not in known]
+    if unknown:
+        sys.exit(f'unknown mutation(s): {unknown}; known: {sorted(known)}')
+    chosen = [m for m in muts if not a.names or m['name'] in a.names]
+    stale = {m['name']: p for m in chosen if (p := anchor_problems(m))}
+    for name, ps in stale.items():
+        print(f'mutation {name!r} no longer applies:', file=sys.stderr)
+        for p in ps:
+            print('  ' + p, file=sys.stderr)
+    if stale:
+        sys.exit(f'{len(stale)} mutation(s) no longer apply: update scripts/mutations.toml with the code')
+    print(f'{len(chosen)} mutations, every anchor applies', flush=True)
+    if a.check:
+        return
+    rows, bad = [], []
+    for m in chosen:
+        t0 = time.time()
+        failed, problems = run_mutation(m)
+        secs = time.time() - t0
+        print(json.dumps({'mutation': m['name'], 'caught_by': failed, 'seconds': round(secs),
+                          'problems': problems}), flush=True)
+        if problems or not failed:
+            bad.append(m['name'])
+        rows.append((m, failed, secs))
+    if a.write_doc and not bad and not a.names:
+        write_doc(rows)
+    if bad:
+        sys.exit(f'mutations not caught (or broken): {", ".join(bad)}')
+    print(f'{len(chosen)} mutations, every one caught')
+
+
+if __name__ == '__main__':
+    main()
