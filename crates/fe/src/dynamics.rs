@@ -2,22 +2,17 @@
 //! iterations in each step, lumped inertia with normal added mass, Morison drag, the hysteretic seabed
 //! committed once per converged step, prescribed top-end motion, and automatic step cutting.
 //!
-//! **Convention (Hilber 1977).** `α ∈ [−1/3, 0]`, `β = (1 − α)²/4`, `γ = 1/2 − α`; `α = 0` is the
-//! trapezoidal rule (Newmark β = 1/4, γ = 1/2). The equations of step `n → n+1` are
-//!
-//! ```text
-//! M a_{n+1} + (1 + α) F(u_{n+1}, v_{n+1}) − α F(u_n, v_n) = 0
-//! u_{n+1} = u_n + Δt v_n + Δt² [(1/2 − β) a_n + β a_{n+1}]
-//! v_{n+1} = v_n + Δt [(1 − γ) a_n + γ a_{n+1}]
-//! ```
-//!
-//! where `F` collects every non-inertial force (elements, flexjoint, weight, seabed, drag, seabed
-//! damping) as "internal minus external". `F_n` is kept in the State, so the step is exactly
-//! reproducible after a restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
-//! The spectral radius at infinite frequency is `(1 + α)/(1 − α)`. The first Newton iteration of a
-//! step reuses the Jacobian factorised last (same Δt) — a modified-Newton start that saves one
-//! factorisation per step; the following iterations are full Newton, so the converged answer is the
-//! same.
+//! The pieces live apart: the scheme (HHT-α/Newmark coefficients, predictors, the Newmark relations
+//! and the residual `G = M a + (1 + α) F − α F_n`, with its conventions) in [`crate::integrator`];
+//! the forces `F` — the structure ([`crate::assembly`]) and the one list of loads that the statics
+//! share ([`crate::loads`]: seabed, drag and wave inertia, structural damping) — and the prescribed
+//! dofs ([`crate::boundary`]). This module keeps the stepping: one attempt's Newton loop, the
+//! commit, predictor retries and step cuts. `F` collects every non-inertial force as "internal
+//! minus external"; `F_n` is kept in the State, so the step is exactly reproducible after a
+//! restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
+//! The first Newton iteration of a step reuses the Jacobian factorised last (same Δt) — a
+//! modified-Newton start that saves one factorisation per step; the following iterations are full
+//! Newton, so the converged answer is the same.
 //!
 //! **Predictor.** A step starts from the constant-acceleration predictor `u_n + Δt v_n + Δt²/2 a_n`.
 //! If Newton diverges from it, the same step is tried once more from the constant-velocity predictor
@@ -76,7 +71,10 @@ use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 use serde::{Deserialize, Serialize};
 
 use crate::assembly::{Assembler, LineResults, Placement};
+use crate::boundary::{self, Constraint};
 use crate::environment::Environment;
+use crate::integrator::StepCoefficients;
+use crate::loads::{self, penetration, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
@@ -84,41 +82,7 @@ use crate::vessel::Vessel;
 use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
 use crate::waves::{Kinematics, WaveScratch};
 
-/// The time integration scheme.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum Scheme {
-    /// HHT-α with `α ∈ [−1/3, 0]` (Hilber's convention).
-    Hht {
-        /// α.
-        alpha: f64,
-    },
-    /// Newmark with its own β and γ (no force averaging).
-    Newmark {
-        /// β.
-        beta: f64,
-        /// γ.
-        gamma: f64,
-    },
-}
-
-impl Scheme {
-    /// `(α, β, γ)`.
-    pub fn coefficients(&self) -> (f64, f64, f64) {
-        match *self {
-            Scheme::Hht { alpha } => (alpha, (1.0 - alpha).powi(2) / 4.0, 0.5 - alpha),
-            Scheme::Newmark { beta, gamma } => (0.0, beta, gamma),
-        }
-    }
-}
-
-impl std::fmt::Display for Scheme {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Scheme::Hht { alpha } => write!(f, "HHT-α, α = {alpha}"),
-            Scheme::Newmark { beta, gamma } => write!(f, "Newmark, β = {beta}, γ = {gamma}"),
-        }
-    }
-}
+pub use crate::integrator::{sdof_free_vibration, Scheme};
 
 /// Solver settings of a dynamic run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -169,6 +133,17 @@ pub struct TopState {
 }
 
 impl DynamicModel {
+    /// The loads of the dynamics ([`crate::loads`]): the seabed, the hydrodynamics and the
+    /// structural damping the scene has.
+    pub fn loads(&self) -> LoadModel<'_> {
+        LoadModel {
+            line: &self.line,
+            placement: &self.placement,
+            hydro: self.environment.hydro.as_ref(),
+            structural_damping: self.structural_damping,
+        }
+    }
+
     /// The top end's prescribed state at `t`: the prescribed motion plus the vessel's motion at the
     /// hang-off, or `None` when the top does not move.
     pub fn top_at(&self, t: f64) -> Option<TopState> {
@@ -360,15 +335,14 @@ pub struct DynWorkspace {
     pub asm: Assembler,
     /// Lumped mass per node: `[xx, xz, zz, rot]`.
     mass: Vec<[f64; 4]>,
-    /// Each node's unit tangent `[cos θ, sin θ]` at the iterate (for the hydrodynamics).
-    node_tangent: [Vec<f64>; 2],
     /// The line's own lumped mass per node (no added mass): it does not change with the motion.
     structural_mass: Vec<[f64; 4]>,
     /// Non-inertial forces at the trial, 3 per node (after a commit, those of the step before:
     /// the converged ones are exchanged into the State's `f_prev`).
     pub f: Vec<f64>,
-    /// Seabed force (resistance, buoyancy and damping) per unit length at the trial, per node.
-    pub seabed_force: Vec<f64>,
+    /// What the loads fill per node: the seabed force per length at the trial (resistance,
+    /// buoyancy and damping) and each node's tangent ([`crate::loads::LoadScratch`]).
+    pub loads: LoadScratch,
     /// Each node's trial seabed history at the last iterate evaluated, when that evaluation kept
     /// them (`histories_kept`): the commit then takes them instead of evaluating them again.
     trial_history: Vec<SeabedHistory>,
@@ -399,8 +373,8 @@ pub struct DynWorkspace {
     /// The free dofs as runs `(g0, e0, len)`: dofs `g0..g0+len` are equations `e0..e0+len` (the
     /// Newton loop's vector operations run over these slices, without a lookup per dof).
     free_runs: Vec<(usize, usize, usize)>,
-    /// The prescribed dofs.
-    fixed: Vec<usize>,
+    /// The prescribed dofs and what prescribes them ([`crate::boundary`]).
+    constraints: Vec<Constraint>,
     /// The residual of every dof (3 per node) before its free equations are taken.
     g_all: Vec<f64>,
     /// The residual's reference norm ([`crate::statics::residual_reference`]) of the Model.
@@ -418,25 +392,23 @@ impl DynWorkspace {
                 s.seabed.untouched()
             });
         let mut free_runs: Vec<(usize, usize, usize)> = Vec::new();
-        let mut fixed = Vec::new();
         for (g, e) in line.equation.iter().enumerate() {
             match (e, free_runs.last_mut()) {
                 (Some(e), Some((g0, e0, len))) if *g0 + *len == g && *e0 + *len == *e => *len += 1,
                 (Some(e), _) => free_runs.push((g, *e, 1)),
-                (None, _) => fixed.push(g),
+                (None, _) => {}
             }
         }
         Ok(Self {
             reference: crate::statics::residual_reference(line),
             free_runs,
-            fixed,
+            constraints: boundary::constraints(line),
             g_all: vec![0.0; 3 * n],
             asm: Assembler::new(line)?,
             mass: vec![[0.0; 4]; n],
             structural_mass: structural_mass(line),
-            node_tangent: [vec![1.0; n], vec![0.0; n]],
             f: vec![0.0; 3 * n],
-            seabed_force: vec![0.0; n],
+            loads: LoadScratch::new(n),
             trial_history: vec![untouched; n],
             histories_kept: false,
             trial_memo: match line.seabed.as_ref().map(|s| &s.seabed.law) {
@@ -501,23 +473,6 @@ impl DynWorkspace {
     }
 }
 
-/// The penetration of node `i` and its rate (positive down).
-#[inline]
-fn penetration(
-    line: &LineModel,
-    pl: &Placement,
-    u: &[f64],
-    v: &[f64],
-    i: usize,
-) -> Option<(f64, f64)> {
-    line.seabed.as_ref().map(|sb| {
-        (
-            sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * line.node_od[i]),
-            -v[3 * i + 1],
-        )
-    })
-}
-
 /// The dynamic State at the end of the statics: at rest, each node in contact starting in Initial
 /// Penetration at its static penetration (the spec's decision). The initial acceleration is the
 /// lumped `a0 = −M⁻¹F(u, 0)` on the free dofs (zero from a static equilibrium).
@@ -572,9 +527,8 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
 }
 
 /// Assembles the non-inertial forces `F(u, v)` at the workspace's iterate `(ws.u, ws.v)` into
-/// `ws.f`; with `with_k`, also `(1+α)(K + c_v·C)` into the
-/// tangent (`k_scale = 1 + α`). `dt` is the step the seabed laws see.
-#[allow(clippy::needless_range_loop)]
+/// `ws.f`: the structure, then every load of [`crate::loads`]; with `Pass::Tangent`, also
+/// `(1+α)(K + c_v·C)` into the tangent (`k_scale = 1 + α`). `dt` is the step the seabed laws see.
 fn forces_at_iterate(
     dm: &DynamicModel,
     committed: &[SeabedHistory],
@@ -587,83 +541,28 @@ fn forces_at_iterate(
     let with_k = pass == Pass::Tangent;
     let keep = pass == Pass::KeepingHistories;
     ws.histories_kept = keep && dm.line.seabed.is_some();
-    let (model, pl) = (&dm.line, &dm.placement);
-    let (u, v) = (&ws.u, &ws.v);
     let asm = &mut ws.asm;
-    asm.assemble_structure(model, pl, u, ws.fj_rotation, with_k);
+    asm.assemble_structure(&dm.line, &dm.placement, &ws.u, ws.fj_rotation, with_k);
     if with_k {
         asm.scale_tangent(k_scale);
     }
-    if let Some(beta) = dm.structural_damping {
-        asm.add_structural_damping(model, pl, u, v, beta, k_scale * c_v, with_k);
-    }
-    let n = model.nodes();
-    if let Some(sb) = &model.seabed {
-        let mut spare = TrialMemo::default();
-        for i in 0..n {
-            let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
-            // The trial history is kept only in the pass expected to converge; the others need
-            // the force alone.
-            // Only a law that keeps something has memos (the linear law's trials take `spare`).
-            let memo = ws.trial_memo.get_mut(i).unwrap_or(&mut spare);
-            let t = if keep {
-                let next = &mut ws.trial_history[i];
-                sb.seabed
-                    .response_and_next(&committed[i], z, zdot, dt, (memo, next))
-            } else {
-                sb.seabed.response(&committed[i], z, zdot, dt, memo)
-            };
-            let l = model.tributary[i];
-            let up = t.total;
-            let mut k = t.tangent;
-            let mut c = t.damping_coefficient;
-            ws.seabed_force[i] = up;
-            asm.residual[3 * i + 1] -= l * up;
-            if with_k && (k != 0.0 || c != 0.0) {
-                // z_pen = const − z, ż_pen = −v_z: d(−L·F)/dz = L·F', d(−L·F)/dv_z = L·c.
-                k *= l;
-                c *= l;
-                asm.add_dof_tangent(model, 3 * i + 1, k_scale * (k + c_v * c));
-            }
-        }
-    }
-    if let Some(h) = &dm.environment.hydro {
-        // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
-        // are two long dependency chains, and in one loop too few nodes fit in the processor's
-        // window to overlap them.
-        node_tangents(&pl.base, u, &mut ws.node_tangent);
-        for i in 0..n {
-            let (tx, ty) = (ws.node_tangent[0][i], ws.node_tangent[1][i]);
-            let z = pl.base[3 * i + 1] + u[3 * i + 1];
-            let kin = ws.wave_kin[i];
-            let d = h.drag(
-                model.node_od[i],
-                model.tributary[i],
-                (tx, ty),
-                z,
-                (v[3 * i], v[3 * i + 1]),
-                kin.map(|k| k.velocity),
-                with_k,
-            );
-            asm.residual[3 * i] -= d.force[0];
-            asm.residual[3 * i + 1] -= d.force[1];
-            if let Some(k) = kin {
-                let f = h.wave_inertia(
-                    model.node_od[i],
-                    model.tributary[i],
-                    (tx, ty),
-                    k.acceleration,
-                );
-                asm.residual[3 * i] -= f[0];
-                asm.residual[3 * i + 1] -= f[1];
-            }
-            if with_k {
-                let f = k_scale * c_v;
-                let [cxx, cxz, czz] = d.damping;
-                asm.add_node_block(i, f * cxx, f * cxz, f * czz);
-            }
-        }
-    }
+    let seabed = SeabedPass::Trial {
+        committed,
+        dt,
+        memo: &mut ws.trial_memo,
+        keep: keep.then_some(&mut ws.trial_history[..]),
+    };
+    let at = Iterate {
+        u: &ws.u,
+        v: &ws.v,
+        wave_kin: &ws.wave_kin,
+    };
+    let scale = TangentScale {
+        with_k,
+        k: k_scale,
+        c_v,
+    };
+    loads::assemble(&dm.loads(), &at, seabed, scale, asm, &mut ws.loads);
     ws.f.copy_from_slice(&asm.residual);
 }
 
@@ -677,21 +576,6 @@ enum Pass {
     KeepingHistories,
     /// The residual and the tangent.
     Tangent,
-}
-
-/// Each node's unit tangent `(cos θ, sin θ)`, `θ = base + u` (rotation dofs), into `[cos, sin]`:
-/// compiled also for AVX2 and AVX-512 and chosen at run time, where the branch-free sine and
-/// cosine of [`crate::fastmath::sin_cos`] run four or eight nodes at a time (the same operations:
-/// the same values to the bit).
-#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: &mut [Vec<f64>; 2]) {
-    let th = base
-        .chunks_exact(3)
-        .zip(u.chunks_exact(3))
-        .map(|(b, u)| b[2] + u[2]);
-    for ((c, s), th) in cos.iter_mut().zip(sin.iter_mut()).zip(th) {
-        (*s, *c) = crate::fastmath::sin_cos(th);
-    }
 }
 
 /// The water kinematics at each node at `t` into `ws.wave_kin`: evaluated at the positions of the
@@ -783,8 +667,8 @@ fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
     let (model, pl) = (&dm.line, &dm.placement);
     ws.mass.copy_from_slice(&ws.structural_mass);
     if let Some(h) = &dm.environment.hydro {
-        node_tangents(&pl.base, u, &mut ws.node_tangent);
-        let [cos, sin] = &ws.node_tangent;
+        loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
+        let [cos, sin] = &ws.loads.node_tangent;
         for (i, m) in ws.mass.iter_mut().enumerate() {
             let ma = h.added_mass(model.node_od[i], model.tributary[i]);
             let (tx, ty) = (cos[i], sin[i]);
@@ -808,24 +692,17 @@ fn attempt(
     iterations: &mut usize,
 ) -> Result<(), Failed> {
     let (model, set) = (&dm.line, &dm.settings);
-    let (alpha, beta, gamma) = set.scheme.coefficients();
+    let sc = set.scheme.step(dt);
     let t1 = state.t + dt;
     lump_mass(dm, &state.u, ws);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
-    let c_pred = if careful { 0.0 } else { 0.5 * dt * dt };
-    for (u, ((u0, v0), a0)) in
-        ws.u.iter_mut()
-            .zip(state.u.iter().zip(&state.v).zip(&state.a))
-    {
-        *u = u0 + dt * v0 + c_pred * a0;
-    }
+    sc.predict((&state.u, &state.v, &state.a), careful, &mut ws.u);
     let top = dm.top_at(t1);
     let prescribed = top.map(|s| (s.d, s.v, s.a));
     // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
     wave_kinematics(dm, state, t1, ws);
-    let c_m = 1.0 / (beta * dt * dt);
-    let c_v = gamma / (beta * dt);
+    let (c_m, c_v, k_scale) = (sc.c_m, sc.c_v, sc.k_scale());
     let mut last = (0, f64::INFINITY);
     let mut first = f64::INFINITY;
     // After a correction with a fresh factorisation Newton is quadratic and the next residual
@@ -837,24 +714,14 @@ fn attempt(
     // before the next one is computed (`lambda` is the fraction of `ws.dq` taken).
     let (mut r_prev, mut lambda, mut backtracks) = (f64::INFINITY, 1.0, 0);
     for it in 0..set.max_iter {
-        // Kinematics from the Newmark relations; prescribed dofs from the motion.
-        newmark_kinematics(state, ws, dt, beta, gamma);
-        for &g in &ws.fixed {
-            let node = g / 3;
-            let k = g % 3;
-            match (&prescribed, node == 0 && k < 2) {
-                (Some((d, v, a)), true) => {
-                    ws.u[g] = d[k];
-                    ws.v[g] = v[k];
-                    ws.a[g] = a[k];
-                }
-                _ => {
-                    ws.u[g] = state.u[g];
-                    ws.v[g] = 0.0;
-                    ws.a[g] = 0.0;
-                }
-            }
-        }
+        // Kinematics from the Newmark relations; prescribed dofs from the boundary conditions.
+        relations(&sc, state, ws);
+        boundary::apply(
+            &ws.constraints,
+            prescribed.as_ref(),
+            &state.u,
+            (&mut ws.u, &mut ws.v, &mut ws.a),
+        );
         // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
         // step instead of two; later iterations are full Newton.
         let reuse = it == 0 && ws.factored_dt == Some(dt);
@@ -866,25 +733,9 @@ fn attempt(
             (true, true) => Pass::KeepingHistories,
             (true, false) => Pass::Forces,
         };
-        forces_at_iterate(dm, &state.history, ws, pass, 1.0 + alpha, c_v, dt);
+        forces_at_iterate(dm, &state.history, ws, pass, k_scale, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
-        for ((((g, m), a), f), f_prev) in ws
-            .g_all
-            .chunks_exact_mut(3)
-            .zip(&ws.mass)
-            .zip(ws.a.chunks_exact(3))
-            .zip(ws.f.chunks_exact(3))
-            .zip(state.f_prev.chunks_exact(3))
-        {
-            let inertia = [
-                m[0] * a[0] + m[1] * a[1],
-                m[1] * a[0] + m[2] * a[1],
-                m[3] * a[2],
-            ];
-            for k in 0..3 {
-                g[k] = inertia[k] + (1.0 + alpha) * f[k] - alpha * f_prev[k];
-            }
-        }
+        sc.residual(&ws.mass, &ws.a, &ws.f, &state.f_prev, &mut ws.g_all);
         if !lazy {
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
@@ -936,7 +787,7 @@ fn attempt(
         if after_fresh && !reuse {
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
-            forces_at_iterate(dm, &state.history, ws, Pass::Tangent, 1.0 + alpha, c_v, dt);
+            forces_at_iterate(dm, &state.history, ws, Pass::Tangent, k_scale, c_v, dt);
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         after_fresh = !reuse;
@@ -957,13 +808,13 @@ fn attempt(
         }
         if r <= 1e-6 && step <= 1e-10 {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
-            newmark_kinematics(state, ws, dt, beta, gamma);
+            relations(&sc, state, ws);
             forces_at_iterate(
                 dm,
                 &state.history,
                 ws,
                 Pass::KeepingHistories,
-                1.0 + alpha,
+                k_scale,
                 c_v,
                 dt,
             );
@@ -1061,25 +912,15 @@ pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
             .sqrt()
 }
 
-/// `a_{n+1}` and `v_{n+1}` on the free dofs from the iterate `u_{n+1}` (the Newmark relations).
-fn newmark_kinematics(state: &DynState, ws: &mut DynWorkspace, dt: f64, beta: f64, gamma: f64) {
-    let c_m = 1.0 / (beta * dt * dt);
-    for &(g0, _, len) in &ws.free_runs {
-        let r = g0..g0 + len;
-        for ((a, v), (u, ((u0, v0), a0))) in
-            ws.a[r.clone()].iter_mut().zip(&mut ws.v[r.clone()]).zip(
-                ws.u[r.clone()].iter().zip(
-                    state.u[r.clone()]
-                        .iter()
-                        .zip(&state.v[r.clone()])
-                        .zip(&state.a[r]),
-                ),
-            )
-        {
-            *a = c_m * (u - u0 - dt * v0) - (0.5 / beta - 1.0) * a0;
-            *v = v0 + dt * ((1.0 - gamma) * a0 + gamma * *a);
-        }
-    }
+/// `a_{n+1}` and `v_{n+1}` on the free dofs from the workspace's iterate (the Newmark relations,
+/// [`crate::integrator`]).
+#[inline]
+fn relations(sc: &StepCoefficients, state: &DynState, ws: &mut DynWorkspace) {
+    sc.relations(
+        &ws.free_runs,
+        (&state.u, &state.v, &state.a),
+        (&ws.u, &mut ws.v, &mut ws.a),
+    );
 }
 
 /// Commits the converged iterate: the seabed histories are the trial ones at `(ws.u, ws.v)`,
@@ -1238,32 +1079,6 @@ pub fn advance(
     outcome.map(|()| info)
 }
 
-/// HHT-α on one degree of freedom `m ü + k u = 0` (the same coefficients as [`advance`]): returns the
-/// displacement after `steps` steps. Used to check the scheme's published numbers.
-pub fn sdof_free_vibration(
-    scheme: Scheme,
-    omega: f64,
-    u0: f64,
-    v0: f64,
-    dt: f64,
-    steps: usize,
-) -> f64 {
-    let (alpha, beta, gamma) = scheme.coefficients();
-    let k = omega * omega;
-    let (mut u, mut v) = (u0, v0);
-    let mut a = -k * u;
-    for _ in 0..steps {
-        // m a1 + (1+α) k u1 − α k u = 0, u1 = u + dt v + dt²((1/2−β) a + β a1).
-        let up = u + dt * v + dt * dt * (0.5 - beta) * a;
-        let a1 =
-            -((1.0 + alpha) * k * up - alpha * k * u) / (1.0 + (1.0 + alpha) * k * beta * dt * dt);
-        let u1 = up + beta * dt * dt * a1;
-        let v1 = v + dt * ((1.0 - gamma) * a + gamma * a1);
-        (u, v, a) = (u1, v1, a1);
-    }
-    u
-}
-
 /// Re-evaluates the forces and the lumped mass at a State (e.g. one restored from a checkpoint) so
 /// that [`results`] can be taken from it. Commits nothing and leaves the reused factorisation alone.
 pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
@@ -1282,7 +1097,7 @@ pub fn results(dm: &DynamicModel, state: &DynState, ws: &DynWorkspace, out: &mut
         &dm.line,
         &dm.placement,
         &state.u,
-        |i| ws.seabed_force[i],
+        |i| ws.loads.seabed_force[i],
         |i| state.history[i].mode().code(),
         |i| {
             let m = mass[i];

@@ -8,20 +8,28 @@
 //! - [`assembly`]: the structural residual and tangent that statics and dynamics share, and the
 //!   nodal results ([`assembly::LineResults`]);
 //! - [`environment`]: the sea (hydrodynamics, current) and the loads it makes on the line;
+//! - [`loads`]: the one list of loads (seabed, hydrodynamics, structural damping) that the statics
+//!   and the dynamics both assemble;
 //! - [`motion`]: prescribed motion of the top end;
 //! - [`waves`]: JONSWAP and Airy waves, their synthesis and kinematics (Wheeler stretching);
 //! - [`vessel`]: vessel motion from RAOs on the same wave train, transferred to the hang-off;
 //! - [`statics`]: the static Newton solve from a catenary seed;
-//! - [`dynamics`]: HHT-α/Newmark time stepping on a [`dynamics::DynamicModel`];
+//! - [`integrator`]: the HHT-α/Newmark coefficients, predictors, relations and residual;
+//! - [`boundary`]: the prescribed dofs of the dynamics and what prescribes them;
+//! - [`dynamics`]: the time stepping (Newton in each step, step cutting) on a
+//!   [`dynamics::DynamicModel`];
 //! - [`analytical`]: closed-form solutions (catenaries, the touchdown boundary layer, the elastica),
 //!   used to seed solves and to test them.
 
 pub mod analytical;
 pub mod assembly;
 pub mod beam;
+pub mod boundary;
 pub mod dynamics;
 pub mod environment;
 mod fastmath;
+pub mod integrator;
+pub mod loads;
 pub mod model;
 pub mod motion;
 pub mod sparse;

@@ -31,6 +31,7 @@ use crate::analytical::{CatenaryError, FreeCatenary, TouchdownCatenary};
 use crate::assembly::Assembler;
 pub use crate::assembly::{LineResults, Placement};
 use crate::environment::Hydro;
+use crate::loads::{self, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::sparse::SolveError;
 
@@ -117,6 +118,10 @@ pub struct StaticWorkspace {
     pub asm: Assembler,
     /// The steady current's hydrodynamics for the solve under way (set by [`solve_in`]).
     current: Option<Hydro>,
+    /// Zero velocities (the line is at rest).
+    at_rest: Vec<f64>,
+    /// What the loads fill per node.
+    loads: LoadScratch,
     g: Vec<f64>,
     g0: Vec<f64>,
     dq: Vec<f64>,
@@ -131,6 +136,8 @@ impl StaticWorkspace {
         Ok(Self {
             asm: Assembler::new(model)?,
             current: None,
+            at_rest: vec![0.0; n3],
+            loads: LoadScratch::new(model.nodes()),
             g: vec![0.0; model.n_eq],
             g0: vec![0.0; model.n_eq],
             dq: vec![0.0; model.n_eq],
@@ -140,46 +147,36 @@ impl StaticWorkspace {
     }
 
     /// Assembles the global residual `R(q)` into the assembler's residual and, if `with_k`, the
-    /// tangent. The seabed acts through its backbone (initial penetration only); a steady current
-    /// (see [`solve_in`]) through its drag on the line at rest, whose dependence on the orientation
-    /// is left out of the tangent. Allocates nothing.
+    /// tangent: the structure, then the loads of [`crate::loads`] as the statics have them — the
+    /// seabed through its backbone (initial penetration only), a steady current (see [`solve_in`])
+    /// through its drag on the line at rest, whose dependence on the orientation is left out of the
+    /// tangent. Allocates nothing.
     pub fn assemble(&mut self, model: &LineModel, pl: &Placement, u: &[f64], with_k: bool) {
         self.asm.assemble_structure(model, pl, u, 0.0, with_k);
-        let q = &pl.base;
-        if let Some(h) = &self.current {
-            if !h.current.is_empty() {
-                for i in 0..model.nodes() {
-                    let th = q[3 * i + 2] + u[3 * i + 2];
-                    let (ty, tx) = th.sin_cos();
-                    let d = h.drag(
-                        model.node_od[i],
-                        model.tributary[i],
-                        (tx, ty),
-                        q[3 * i + 1] + u[3 * i + 1],
-                        (0.0, 0.0),
-                        None,
-                        false,
-                    );
-                    self.asm.residual[3 * i] -= d.force[0];
-                    self.asm.residual[3 * i + 1] -= d.force[1];
-                }
-            }
-        }
-        if let Some(sb) = &model.seabed {
-            for i in 0..model.nodes() {
-                let z_pen = sb.mudline_z - (q[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]);
-                if z_pen <= 0.0 {
-                    continue;
-                }
-                let t = sb.seabed.backbone(z_pen);
-                let l = model.tributary[i];
-                self.asm.residual[3 * i + 1] -= l * t.total();
-                if with_k {
-                    // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1.
-                    self.asm.add_dof_tangent(model, 3 * i + 1, l * t.tangent);
-                }
-            }
-        }
+        let m = LoadModel {
+            line: model,
+            placement: pl,
+            hydro: self.current.as_ref(),
+            structural_damping: None,
+        };
+        let at = Iterate {
+            u,
+            v: &self.at_rest,
+            wave_kin: &[],
+        };
+        let scale = TangentScale {
+            with_k,
+            k: 1.0,
+            c_v: 0.0,
+        };
+        loads::assemble(
+            &m,
+            &at,
+            SeabedPass::Backbone,
+            scale,
+            &mut self.asm,
+            &mut self.loads,
+        );
     }
 }
 

@@ -1,0 +1,550 @@
+//! The loads on the line besides its elements, submerged weight and flexjoint (those are the
+//! structure, [`crate::assembly::Assembler::assemble_structure`]): **one list for the statics and
+//! the dynamics**. Each load adds its part of the residual `F` ("internal minus external") and, when
+//! the tangent is wanted, its part of `k·(K + c_v·C)` (stiffness `K = ∂F/∂u`, damping
+//! `C = ∂F/∂v`): the dynamics pass `k = 1 + α` and `c_v = γ/(βΔt)`, the statics `k = 1`, `c_v = 0`.
+//! [`assemble`] adds every load the Model has, in the order of the list:
+//!
+//! 1. **Structural damping** (dynamics; `β` s, stiffness-proportional):
+//!    `F_e = β·Bᵀ K_l B·v` per element ([`crate::beam::structural_damping`]).
+//! 2. **Seabed contact.** The penetration of node `i`'s invert, positive down,
+//!    `z_pen = z_mudline − (z_i − D_i/2)`, its rate `ż_pen = −v_z`; the force per length `P`
+//!    acts over the tributary length `L_i`: `F_z −= L_i·P`, with `∂(−L·P)/∂z = L·P'` and
+//!    `∂(−L·P)/∂v_z = L·c`. In the statics `P` is the law's backbone (initial penetration, no
+//!    history, nothing above the mudline: [`SeabedPass::Backbone`]); in the dynamics it is each
+//!    node's trial from its committed history ([`SeabedPass::Trial`], pure: the caller commits).
+//! 3. **Hydrodynamics** (Morison, per unit unstretched length, lumped at nodes): drag on the
+//!    velocity relative to the current `U(z)` and the waves, split along the node's tangent `t`,
+//!    `f = ½ρ Cd_n D |v_n| v_n + ½ρ Cd_a πD |v_t| v_t t`, its velocity derivative in `C` (its
+//!    dependence on the orientation is left out of the tangent); and the wave inertia
+//!    `ρA(1 + Ca)·a_n + ρA·a_t` ([`crate::environment::Hydro::wave_inertia`]). In the statics only
+//!    a steady current acts, on the line at rest.
+//!
+//! **A new load** is a function here, called from [`assemble`] when its `Option` in [`LoadModel`]
+//! is `Some` (an effect absent from the scene is not built and costs nothing), with its
+//! finite-difference tangent test and a mutation in `scripts/mutations.toml`.
+
+use catena_seabed::law::{SeabedHistory, TrialMemo};
+
+use crate::assembly::{Assembler, Placement};
+use crate::environment::Hydro;
+use crate::model::LineModel;
+use crate::waves::Kinematics;
+
+/// What the loads need of the Model: the line, its placement and the optional effects.
+#[derive(Debug, Clone, Copy)]
+pub struct LoadModel<'a> {
+    /// The line (its seabed contact is `line.seabed`).
+    pub line: &'a LineModel,
+    /// The base configuration.
+    pub placement: &'a Placement,
+    /// The water's hydrodynamics, if they act (the statics: only with a current).
+    pub hydro: Option<&'a Hydro>,
+    /// Stiffness-proportional structural damping `β` (s), if any (dynamics only).
+    pub structural_damping: Option<f64>,
+}
+
+/// The iterate the loads are evaluated at: displacements from the base, velocities (zeros in the
+/// statics) and the water's kinematics at each node (empty without waves).
+#[derive(Debug, Clone, Copy)]
+pub struct Iterate<'a> {
+    /// Displacements, 3 per node.
+    pub u: &'a [f64],
+    /// Velocities, 3 per node.
+    pub v: &'a [f64],
+    /// Wave kinematics per node (`None` above the surface); empty without waves.
+    pub wave_kin: &'a [Option<Kinematics>],
+}
+
+/// How the seabed law is evaluated.
+#[derive(Debug)]
+pub enum SeabedPass<'a> {
+    /// The statics: the backbone (initial penetration), no history; nodes above the mudline carry
+    /// nothing.
+    Backbone,
+    /// The dynamics: each node's trial from its committed history over a step `dt`, with its memo;
+    /// `keep` receives each node's trial history (the pass expected to converge).
+    Trial {
+        /// The committed histories, one per node.
+        committed: &'a [SeabedHistory],
+        /// The step the law sees, s.
+        dt: f64,
+        /// Each node's trial memo (empty for a law that keeps nothing).
+        memo: &'a mut [TrialMemo],
+        /// Where each node's trial history goes, when kept.
+        keep: Option<&'a mut [SeabedHistory]>,
+    },
+}
+
+/// What the tangent is wanted for: `scale·(K + c_v·C)` when `with_k`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentScale {
+    /// Assemble the tangent (else the residual alone).
+    pub with_k: bool,
+    /// `k`: the factor on every load's tangent (`1 + α` in the dynamics, 1 in the statics).
+    pub k: f64,
+    /// `c_v`: the factor on the damping within it (`γ/(βΔt)`; 0 in the statics).
+    pub c_v: f64,
+}
+
+/// Per-node scratch the loads fill: each node's unit tangent `[cos θ, sin θ]` (hydrodynamics) and
+/// its seabed force per length (N/m; resistance, buoyancy and damping).
+#[derive(Debug, Clone)]
+pub struct LoadScratch {
+    /// Each node's unit tangent at the iterate, `[cos, sin]`.
+    pub node_tangent: [Vec<f64>; 2],
+    /// Seabed force per length at the iterate, N/m.
+    pub seabed_force: Vec<f64>,
+}
+
+impl LoadScratch {
+    /// Sized for `n` nodes.
+    pub fn new(n: usize) -> Self {
+        Self {
+            node_tangent: [vec![1.0; n], vec![0.0; n]],
+            seabed_force: vec![0.0; n],
+        }
+    }
+}
+
+/// The penetration of node `i`'s invert and its rate (positive down), if the line has a seabed.
+#[inline]
+pub fn penetration(
+    line: &LineModel,
+    pl: &Placement,
+    u: &[f64],
+    v: &[f64],
+    i: usize,
+) -> Option<(f64, f64)> {
+    line.seabed.as_ref().map(|sb| {
+        (
+            sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * line.node_od[i]),
+            -v[3 * i + 1],
+        )
+    })
+}
+
+/// Adds every load of the list (see the module docs) at the iterate `at` to the assembler's residual
+/// and, with `scale.with_k`, its tangent (after the structure). Allocates nothing.
+pub fn assemble(
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    seabed: SeabedPass<'_>,
+    scale: TangentScale,
+    asm: &mut Assembler,
+    scratch: &mut LoadScratch,
+) {
+    if let Some(beta) = m.structural_damping {
+        asm.add_structural_damping(
+            m.line,
+            m.placement,
+            at.u,
+            at.v,
+            beta,
+            scale.k * scale.c_v,
+            scale.with_k,
+        );
+    }
+    if m.line.seabed.is_some() {
+        add_seabed(m, at, seabed, scale, asm, &mut scratch.seabed_force);
+    }
+    if let Some(h) = m.hydro {
+        add_hydrodynamics(h, m, at, scale, asm, &mut scratch.node_tangent);
+    }
+}
+
+/// Seabed contact at every node (see the module docs).
+#[inline]
+fn add_seabed(
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    pass: SeabedPass<'_>,
+    scale: TangentScale,
+    asm: &mut Assembler,
+    seabed_force: &mut [f64],
+) {
+    let (model, pl) = (m.line, m.placement);
+    let Some(sb) = &model.seabed else { return };
+    let (u, v) = (at.u, at.v);
+    match pass {
+        SeabedPass::Backbone => {
+            for i in 0..model.nodes() {
+                let z_pen =
+                    sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * model.node_od[i]);
+                if z_pen <= 0.0 {
+                    seabed_force[i] = 0.0;
+                    continue;
+                }
+                let t = sb.seabed.backbone(z_pen);
+                let l = model.tributary[i];
+                seabed_force[i] = t.total();
+                asm.residual[3 * i + 1] -= l * t.total();
+                if scale.with_k {
+                    // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1.
+                    asm.add_dof_tangent(model, 3 * i + 1, l * t.tangent);
+                }
+            }
+        }
+        SeabedPass::Trial {
+            committed,
+            dt,
+            memo,
+            mut keep,
+        } => {
+            let mut spare = TrialMemo::default();
+            for i in 0..model.nodes() {
+                let (z, zdot) = penetration(model, pl, u, v, i).unwrap_or((0.0, 0.0));
+                // The trial history is kept only in the pass expected to converge; the others need
+                // the force alone. Only a law that keeps something has memos (the linear law's
+                // trials take `spare`).
+                let memo = memo.get_mut(i).unwrap_or(&mut spare);
+                let t = match keep.as_deref_mut() {
+                    Some(next) => sb.seabed.response_and_next(
+                        &committed[i],
+                        z,
+                        zdot,
+                        dt,
+                        (memo, &mut next[i]),
+                    ),
+                    None => sb.seabed.response(&committed[i], z, zdot, dt, memo),
+                };
+                let l = model.tributary[i];
+                let up = t.total;
+                let mut k = t.tangent;
+                let mut c = t.damping_coefficient;
+                seabed_force[i] = up;
+                asm.residual[3 * i + 1] -= l * up;
+                if scale.with_k && (k != 0.0 || c != 0.0) {
+                    // z_pen = const − z, ż_pen = −v_z: d(−L·F)/dz = L·F', d(−L·F)/dv_z = L·c.
+                    k *= l;
+                    c *= l;
+                    asm.add_dof_tangent(model, 3 * i + 1, scale.k * (k + scale.c_v * c));
+                }
+            }
+        }
+    }
+}
+
+/// Drag and wave inertia at every node (see the module docs). The damping block enters the tangent
+/// when `c_v ≠ 0` (the dynamics).
+#[inline]
+fn add_hydrodynamics(
+    h: &Hydro,
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    scale: TangentScale,
+    asm: &mut Assembler,
+    node_tangent: &mut [Vec<f64>; 2],
+) {
+    let (model, pl) = (m.line, m.placement);
+    let (u, v) = (at.u, at.v);
+    let with_c = scale.with_k && scale.c_v != 0.0;
+    // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
+    // are two long dependency chains, and in one loop too few nodes fit in the processor's
+    // window to overlap them.
+    node_tangents(&pl.base, u, node_tangent);
+    for i in 0..model.nodes() {
+        let (tx, ty) = (node_tangent[0][i], node_tangent[1][i]);
+        let z = pl.base[3 * i + 1] + u[3 * i + 1];
+        let kin = at.wave_kin.get(i).copied().flatten();
+        let d = h.drag(
+            model.node_od[i],
+            model.tributary[i],
+            (tx, ty),
+            z,
+            (v[3 * i], v[3 * i + 1]),
+            kin.map(|k| k.velocity),
+            with_c,
+        );
+        asm.residual[3 * i] -= d.force[0];
+        asm.residual[3 * i + 1] -= d.force[1];
+        if let Some(k) = kin {
+            let f = h.wave_inertia(
+                model.node_od[i],
+                model.tributary[i],
+                (tx, ty),
+                k.acceleration,
+            );
+            asm.residual[3 * i] -= f[0];
+            asm.residual[3 * i + 1] -= f[1];
+        }
+        if with_c {
+            let f = scale.k * scale.c_v;
+            let [cxx, cxz, czz] = d.damping;
+            asm.add_node_block(i, f * cxx, f * cxz, f * czz);
+        }
+    }
+}
+
+/// Each node's unit tangent `(cos θ, sin θ)`, `θ = base + u` (rotation dofs), into `[cos, sin]`:
+/// compiled also for AVX2 and AVX-512 and chosen at run time, where the branch-free sine and
+/// cosine of [`crate::fastmath::sin_cos`] run four or eight nodes at a time (the same operations:
+/// the same values to the bit).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+pub fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: &mut [Vec<f64>; 2]) {
+    let th = base
+        .chunks_exact(3)
+        .zip(u.chunks_exact(3))
+        .map(|(b, u)| b[2] + u[2]);
+    for ((c, s), th) in cos.iter_mut().zip(sin.iter_mut()).zip(th) {
+        (*s, *c) = crate::fastmath::sin_cos(th);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::Section;
+    use crate::model::{LineSpec, SeabedContact, Segment, Support};
+    use catena_seabed::law::{Law, Seabed};
+    use catena_seabed::linear::LinearSeabed;
+    use catena_seabed::rq::{RandolphQuiggin, RqParams};
+
+    const N: usize = 11;
+
+    /// A 10 m pipe (D 0.3 m) lying across a mudline at z = 0, its nodes pressed in by 1–25 mm
+    /// except two clear above it, gently bent, pinned at its left end.
+    fn line(law: Law) -> (LineModel, Placement) {
+        let model = LineModel::build(&LineSpec {
+            segments: vec![Segment {
+                length: 10.0,
+                element_length: 1.0,
+                section: Section { ea: 1e8, ei: 1e5 },
+                weight: 500.0,
+                mass: 100.0,
+                od: 0.3,
+            }],
+            top: Support::Pinned,
+            anchor: Support::Free,
+            seabed: Some(SeabedContact {
+                seabed: Seabed {
+                    law,
+                    buoyancy: None,
+                },
+                mudline_z: 0.0,
+            }),
+            flexjoint: None,
+        })
+        .expect("line");
+        let mut q = vec![0.0; 3 * N];
+        for i in 0..N {
+            let pen = match i {
+                3 | 7 => -0.05,
+                _ => 0.001 + 0.0024 * i as f64,
+            };
+            q[3 * i] = i as f64;
+            q[3 * i + 1] = 0.15 - pen;
+            q[3 * i + 2] = 0.01 * (i as f64 - 5.0);
+        }
+        (model, Placement::new(&q))
+    }
+
+    fn hydro() -> Hydro {
+        Hydro {
+            water_density: 1025.0,
+            cd_normal: 1.2,
+            cd_axial: 0.008,
+            ca_normal: 1.0,
+            current: vec![(-10.0, 0.2), (1.0, 0.6)],
+        }
+    }
+
+    /// The residual on the free equations and the tangent's product with `d` (free equations).
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate(
+        model: &LineModel,
+        pl: &Placement,
+        hydro: Option<&Hydro>,
+        static_pass: bool,
+        (u, v): (&[f64], &[f64]),
+        scale: TangentScale,
+        d: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let mut asm = Assembler::new(model).expect("assembler");
+        let mut scratch = LoadScratch::new(N);
+        let sb = model.seabed.as_ref().expect("seabed");
+        let committed: Vec<SeabedHistory> = (0..N)
+            .map(|i| {
+                let z0 = penetration(model, pl, &[0.0; 3 * N], &[0.0; 3 * N], i)
+                    .expect("z")
+                    .0;
+                sb.seabed.start_of_dynamics(z0.max(0.0))
+            })
+            .collect();
+        let pass = if static_pass {
+            SeabedPass::Backbone
+        } else {
+            SeabedPass::Trial {
+                committed: &committed,
+                dt: 0.1,
+                memo: &mut [],
+                keep: None,
+            }
+        };
+        let m = LoadModel {
+            line: model,
+            placement: pl,
+            hydro,
+            structural_damping: Some(0.01),
+        };
+        // The loads alone (the structure's tangent has its own test).
+        asm.residual.fill(0.0);
+        asm.k.clear();
+        let at = Iterate {
+            u,
+            v,
+            wave_kin: &[],
+        };
+        assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
+        let mut r = vec![0.0; model.n_eq];
+        asm.gather(model, &mut r);
+        let mut kd = vec![0.0; model.n_eq];
+        asm.k.mul(d, &mut kd);
+        (r, kd)
+    }
+
+    /// A direction on the free equations and the same as a global displacement.
+    fn direction(model: &LineModel, scale: f64) -> (Vec<f64>, Vec<f64>) {
+        let mut free = vec![0.0; model.n_eq];
+        let mut global = vec![0.0; 3 * N];
+        for (g, e) in model.equation.iter().enumerate() {
+            if let Some(e) = e {
+                let x = scale * (((g * 7919) % 13) as f64 / 13.0 - 0.4);
+                free[*e] = x;
+                global[g] = x;
+            }
+        }
+        (free, global)
+    }
+
+    fn worst(a: &[f64], b: &[f64]) -> f64 {
+        let big = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        a.iter()
+            .zip(b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+            / big
+    }
+
+    /// `K·d` against the central difference `(R(u + h·d) − R(u − h·d))/2h` with the seabed alone:
+    /// the statics' backbone (Randolph–Quiggin) and the dynamics' trial (linear law with damping,
+    /// structural damping on), to 1e-6 of the largest entry. A wrong sign, tributary length or dof
+    /// fails by orders of magnitude.
+    #[test]
+    fn seabed_tangent_matches_finite_differences() {
+        let rq = Law::RandolphQuiggin(RandolphQuiggin::new(RqParams::table1()).expect("rq"));
+        let linear = Law::Linear(LinearSeabed::new(0.3, 2e5, 3e3).expect("linear"));
+        for (name, law, static_pass) in [("rq backbone", rq, true), ("linear trial", linear, false)]
+        {
+            let (model, pl) = line(law);
+            let (d, dg) = direction(&model, 1.0);
+            // At rest: the structural damping's force (and its dependence on u) is zero.
+            let v = vec![0.0; 3 * N];
+            let u0 = vec![0.0; 3 * N];
+            let scale = TangentScale {
+                with_k: true,
+                k: 1.0,
+                c_v: 0.0,
+            };
+            let (_, kd) = evaluate(&model, &pl, None, static_pass, (&u0, &v), scale, &d);
+            let h = 1e-7;
+            let shifted = |s: f64| -> Vec<f64> {
+                let u: Vec<f64> = dg.iter().map(|x| s * h * x).collect();
+                evaluate(&model, &pl, None, static_pass, (&u, &v), scale, &d).0
+            };
+            let (rp, rm) = (shifted(1.0), shifted(-1.0));
+            let fd: Vec<f64> = rp
+                .iter()
+                .zip(&rm)
+                .map(|(p, m)| (p - m) / (2.0 * h))
+                .collect();
+            let w = worst(&kd, &fd);
+            println!("{name}: worst difference {w:.2e} of the largest entry");
+            assert!(w < 1e-6, "{name}: {w}");
+        }
+    }
+
+    /// `C·d` (the tangent with `c_v = 1` less the one with `c_v = 0`) against the central difference
+    /// of the residual in the velocities: drag (normal and axial, in a current), the seabed's damping
+    /// and the structural damping, to 1e-6 of the largest entry. With `c_v = 0` (the statics) no
+    /// damping enters the tangent.
+    #[test]
+    fn damping_tangent_matches_finite_differences() {
+        let linear = Law::Linear(LinearSeabed::new(0.3, 2e5, 3e3).expect("linear"));
+        let (model, pl) = line(linear);
+        let h_sea = hydro();
+        let (d, dg) = direction(&model, 1.0);
+        let u = vec![0.0; 3 * N];
+        // Velocities of every size and direction (the drag's normal and axial parts both act).
+        let v: Vec<f64> = (0..3 * N)
+            .map(|g| 0.3 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
+            .collect();
+        let with = |c_v: f64| TangentScale {
+            with_k: true,
+            k: 1.0,
+            c_v,
+        };
+        let (_, k1) = evaluate(&model, &pl, Some(&h_sea), false, (&u, &v), with(1.0), &d);
+        let (_, k0) = evaluate(&model, &pl, Some(&h_sea), false, (&u, &v), with(0.0), &d);
+        let cd: Vec<f64> = k1.iter().zip(&k0).map(|(a, b)| a - b).collect();
+        let h = 1e-7;
+        let shifted = |s: f64| -> Vec<f64> {
+            let vs: Vec<f64> = v.iter().zip(&dg).map(|(v, x)| v + s * h * x).collect();
+            evaluate(&model, &pl, Some(&h_sea), false, (&u, &vs), with(0.0), &d).0
+        };
+        let (rp, rm) = (shifted(1.0), shifted(-1.0));
+        let fd: Vec<f64> = rp
+            .iter()
+            .zip(&rm)
+            .map(|(p, m)| (p - m) / (2.0 * h))
+            .collect();
+        let w = worst(&cd, &fd);
+        println!("damping: worst difference {w:.2e} of the largest entry");
+        assert!(w < 1e-6, "{w}");
+    }
+
+    /// Zero motion: at rest in still water (no current, no waves) the hydrodynamics add nothing to
+    /// the residual, to the bit; and a rigid translation along the flat mudline moves no seabed
+    /// force.
+    #[test]
+    fn still_water_and_a_rigid_slide_add_nothing() {
+        let linear = Law::Linear(LinearSeabed::new(0.3, 2e5, 0.0).expect("linear"));
+        let (model, pl) = line(linear);
+        let still = Hydro {
+            current: vec![],
+            ..hydro()
+        };
+        let zero = vec![0.0; 3 * N];
+        let d = vec![0.0; model.n_eq];
+        let scale = TangentScale {
+            with_k: false,
+            k: 1.0,
+            c_v: 0.0,
+        };
+        let (r_dry, _) = evaluate(&model, &pl, None, false, (&zero, &zero), scale, &d);
+        let (r_wet, _) = evaluate(&model, &pl, Some(&still), false, (&zero, &zero), scale, &d);
+        assert_eq!(r_dry, r_wet);
+        let mut slide = vec![0.0; 3 * N];
+        for i in 0..N {
+            slide[3 * i] = 0.37;
+        }
+        let mut s = LoadScratch::new(N);
+        let mut a = Assembler::new(&model).expect("assembler");
+        let m = LoadModel {
+            line: &model,
+            placement: &pl,
+            hydro: None,
+            structural_damping: None,
+        };
+        let mut forces = |u: &[f64]| {
+            a.residual.fill(0.0);
+            let at = Iterate {
+                u,
+                v: &zero,
+                wave_kin: &[],
+            };
+            assemble(&m, &at, SeabedPass::Backbone, scale, &mut a, &mut s);
+            s.seabed_force.clone()
+        };
+        assert_eq!(forces(&zero), forces(&slide));
+    }
+}
