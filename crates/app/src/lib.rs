@@ -8,6 +8,7 @@
 //! - [`run`]: the dynamic run, each converged step handed to [`observe::Observer`]s;
 //! - [`observe`]: the observer trait and the built-in observers (envelopes, gauges, top history,
 //!   checkpoints);
+//! - [`outputs`]: the registry of built-in outputs a run builds from its scene;
 //! - [`checkpoint`]: checkpoints (State, solver memory, observers' states, scene hash, version);
 //! - [`convergence`]: the convergence study (what accuracy costs in time);
 //! - [`soil_test`]: the soil element test;
@@ -22,6 +23,7 @@ pub mod error;
 pub mod fatigue;
 pub mod fatigue_observer;
 pub mod observe;
+pub mod outputs;
 pub mod run;
 pub mod scene;
 pub mod soil_test;

@@ -19,11 +19,12 @@ use crate::fatigue_observer::Fatigue;
 use crate::observe::{
     Control, Envelopes, Gauges, Observer, RunContext, StepView, Stop, TopHistory,
 };
+use crate::outputs::{Outputs, Setup};
 use crate::scene::riser::DynamicSpec;
 use crate::statics::{self, StaticRun};
 
 /// The result of a dynamic run.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct DynamicRun {
     /// The statics it started from.
     pub statics: StaticRun,
@@ -39,6 +40,8 @@ pub struct DynamicRun {
     pub top: TopHistory,
     /// Fatigue damage, if the scene has a `[fatigue]` table.
     pub fatigue: Option<Fatigue>,
+    /// The other registered outputs ([`crate::outputs::BUILTINS`]; see [`DynamicRun::output`]).
+    pub outputs: Outputs,
     /// Converged steps of `dynamic.time_step` (the time reached is `steps·Δt`).
     pub steps: u64,
     /// The time reached, s.
@@ -94,6 +97,12 @@ impl DynamicRun {
             .take(n)
             .map(|(node, count)| (self.model.line.arc[node], count))
             .collect()
+    }
+
+    /// A registered output of type `T` other than the envelopes, gauges, top history and fatigue
+    /// (which are fields), if the run has one.
+    pub fn output<T: std::any::Any>(&self) -> Option<&T> {
+        self.outputs.get::<T>()
     }
 
     /// Whether the run reached its duration.
@@ -169,61 +178,31 @@ pub fn simulate(
     run(statics::solve(scene)?, extra, opts)
 }
 
-/// Runs the dynamics of a solved scene, handing every converged step to the built-in observers and
-/// to `extra`.
+/// Runs the dynamics of a solved scene, handing every converged step to the built-in outputs
+/// ([`crate::outputs`]) and to `extra`.
 pub fn run(
     statics: StaticRun,
     extra: &mut [&mut dyn Observer],
     opts: RunOptions,
 ) -> Result<DynamicRun, AppError> {
     let (spec, dm) = prepare(&statics)?;
-    let file = statics.scene.file.clone();
     let t0 = Instant::now();
     let n = dm.line.nodes();
     let mut ws = DynWorkspace::new(&dm.line).map_err(|source| AppError::Solver {
-        file: file.clone(),
+        file: statics.scene.file.clone(),
         source,
     })?;
     let mut state = dynamics::initial_state(&dm, &statics.u, &mut ws);
-    let ei: Vec<f64> = dm.line.elements.iter().map(|e| e.section.ei).collect();
-    let mut envelopes = Envelopes::new(&ei, spec.section);
-    let mut gauges = Gauges::new(&spec.gauges);
-    let mut top = TopHistory::default();
-    let mut fatigue = spec.fatigue.clone().map(|f| Fatigue::new(f, n));
+    let mut outputs = Outputs::build(&Setup {
+        spec: &spec,
+        model: &dm,
+    });
     let mut res = LineResults::new(n);
-    let n_steps = (spec.duration / spec.dt).round() as u64;
     let mut first_step = 1;
     let restarted = opts.restart.is_some();
     if let Some(cp) = &opts.restart {
-        cp.check(&opts.restart_file, &statics.scene.text, &dm, &spec)?;
-        let bad = |what: String| AppError::Checkpoint {
-            file: opts.restart_file.clone(),
-            what,
-        };
-        state = cp.state.clone();
-        match &cp.solver {
-            Some(m) => ws.restore_solver_memory(m).map_err(bad)?,
-            None => ws.forget_factorisation(),
-        }
-        {
-            let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
-            for o in builtin.into_iter().flatten() {
-                let saved = cp
-                    .observers
-                    .get(o.name())
-                    .ok_or_else(|| bad(format!("it holds no state for `{}`", o.name())))?;
-                o.restore(saved).map_err(bad)?;
-            }
-            // An observer the checkpointed run did not have starts from nothing (it decides
-            // whether it can).
-            for o in extra.iter_mut() {
-                let saved = cp
-                    .observers
-                    .get(o.name())
-                    .unwrap_or(&serde_json::Value::Null);
-                o.restore(saved).map_err(bad)?;
-            }
-        }
+        restore(cp, &opts, &statics, (&dm, &spec), (&mut state, &mut ws))?;
+        restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
         first_step = cp.step + 1;
         // The results of the restored State: the forces at it are re-evaluated (the workspace of a
         // restored run holds no evaluation yet); nothing is committed.
@@ -244,116 +223,31 @@ pub fn run(
         record: true,
         envelope: state.t >= spec.envelope_start - 1e-9 * spec.dt,
     };
-    {
-        let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
-        each(builtin, extra, |o| o.start(&ctx, &first, restarted))?;
-    }
-    let (mut iterations, mut cuts, mut retries) = (0usize, 0u32, 0u32);
-    let mut cut_log = Vec::new();
-    let mut stop = None;
-    let mut steps = first_step - 1;
-    for k in first_step..=n_steps {
-        match dynamics::advance(&dm, &mut state, &mut ws, spec.dt) {
-            Ok(info) => {
-                iterations += info.iterations;
-                cuts += info.cuts;
-                if let Some(c) = info.last_cut {
-                    if cut_log.len() < MAX_CUT_LOG {
-                        cut_log.push(CutEvent {
-                            t: (k - 1) as f64 * spec.dt,
-                            cuts: info.cuts,
-                            dt: c.dt,
-                            residual: c.residual,
-                            node: c.node,
-                            arc: dm.line.arc[c.node],
-                        });
-                    }
-                }
-                retries += info.retries;
-                steps = k;
-                state.t = k as f64 * spec.dt;
-                dynamics::results(&dm, &state, &ws, &mut res);
-                if let Some((field, node)) =
-                    catena_fe::assembly::first_non_finite(&res, &state.u, &state.v, &state.a)
-                {
-                    stop = Some(Stop::NonFinite {
-                        t: state.t,
-                        field,
-                        node,
-                        arc: dm.line.arc[node],
-                    });
-                    // The step is not handed to the observers: the run ends at the one before.
-                    state.t = (k - 1) as f64 * spec.dt;
-                    steps = k - 1;
-                    break;
-                }
-                let view = StepView {
-                    t: state.t,
-                    step: k,
-                    state: &state,
-                    results: &res,
-                    info,
-                    record: k as usize % spec.output_every == 0,
-                    envelope: state.t >= spec.envelope_start - 1e-9 * spec.dt,
-                };
-                let mut wants = false;
-                {
-                    let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
-                    each(builtin, extra, |o| {
-                        if let Control::Stop(reason) = o.step(&ctx, &view)? {
-                            stop = Some(Stop::Interrupted(reason));
-                        }
-                        wants |= o.wants_checkpoint(k);
-                        Ok(())
-                    })?;
-                }
-                if wants {
-                    let mut observers = BTreeMap::new();
-                    observers.insert(envelopes.name().to_string(), envelopes.save()?);
-                    observers.insert(gauges.name().to_string(), gauges.save()?);
-                    observers.insert(top.name().to_string(), top.save()?);
-                    if let Some(f) = fatigue.as_mut() {
-                        observers.insert(f.name().to_string(), f.save()?);
-                    }
-                    for o in extra.iter_mut() {
-                        observers.insert(o.name().to_string(), o.save()?);
-                    }
-                    let cp = Checkpoint {
-                        catena_version: VERSION.to_string(),
-                        scene_file: file.clone(),
-                        scene_hash: crate::scene::text_hash(&statics.scene.text),
-                        step: k,
-                        state: state.clone(),
-                        solver: ws.solver_memory(),
-                        observers,
-                    };
-                    for o in extra.iter_mut() {
-                        if o.wants_checkpoint(k) {
-                            o.checkpoint(&cp)?;
-                        }
-                    }
-                }
-                if stop.is_some() {
-                    break;
-                }
-                if opts.stop_after == Some(k) && k < n_steps {
-                    stop = Some(Stop::StoppedAfter(k));
-                    break;
-                }
-            }
-            Err(e) => {
-                stop = Some(Stop::Failed(e));
-                break;
-            }
-        }
-    }
-    {
-        let builtin = builtins(&mut envelopes, &mut gauges, &mut top, &mut fatigue);
-        each(builtin, extra, |o| o.finish(&ctx, stop.as_ref()))?;
-    }
+    each(&mut outputs, extra, |o| o.start(&ctx, &first, restarted))?;
+    let mut stepper = Stepper {
+        ctx: &ctx,
+        state: &mut state,
+        ws: &mut ws,
+        res: &mut res,
+        outputs: &mut outputs,
+        tally: Tally {
+            steps: first_step - 1,
+            ..Tally::default()
+        },
+    };
+    let stop = stepper.steps(first_step, extra, &opts);
+    let tally = std::mem::take(&mut stepper.tally);
+    let stop = stop?;
+    each(&mut outputs, extra, |o| o.finish(&ctx, stop.as_ref()))?;
+    let envelopes = outputs
+        .take::<Envelopes>()
+        .unwrap_or_else(|| Envelopes::new(&[], None));
+    let gauges = outputs.take::<Gauges>().unwrap_or_else(|| Gauges::new(&[]));
+    let top = outputs.take::<TopHistory>().unwrap_or_default();
+    let fatigue = outputs.take::<Fatigue>();
     Ok(DynamicRun {
-        t_reached: steps as f64 * spec.dt,
-        steps,
+        t_reached: tally.steps as f64 * spec.dt,
+        steps: tally.steps,
         statics,
         spec,
         model: dm,
@@ -361,39 +255,214 @@ pub fn run(
         gauges,
         top,
         fatigue,
-        iterations,
-        cuts,
-        retries,
-        cut_log,
+        outputs,
+        iterations: tally.iterations,
+        cuts: tally.cuts,
+        retries: tally.retries,
+        cut_log: tally.cut_log,
         wall_seconds: t0.elapsed().as_secs_f64(),
         stop,
     })
 }
 
-/// The built-in observers, in their fixed order (the optional ones `None` when absent).
-type Builtins<'a> = [Option<&'a mut (dyn Observer + 'static)>; 4];
-
-fn builtins<'a>(
-    envelopes: &'a mut Envelopes,
-    gauges: &'a mut Gauges,
-    top: &'a mut TopHistory,
-    fatigue: &'a mut Option<Fatigue>,
-) -> Builtins<'a> {
-    [
-        Some(envelopes),
-        Some(gauges),
-        Some(top),
-        fatigue.as_mut().map(|f| f as &mut (dyn Observer + 'static)),
-    ]
+/// Takes a checkpoint's State and solver memory after checking it against the run.
+fn restore(
+    cp: &Checkpoint,
+    opts: &RunOptions,
+    statics: &StaticRun,
+    (dm, spec): (&DynamicModel, &DynamicSpec),
+    (state, ws): (&mut dynamics::DynState, &mut DynWorkspace),
+) -> Result<(), AppError> {
+    cp.check(&opts.restart_file, &statics.scene.text, dm, spec)?;
+    *state = cp.state.clone();
+    match &cp.solver {
+        Some(m) => ws
+            .restore_solver_memory(m)
+            .map_err(|what| AppError::Checkpoint {
+                file: opts.restart_file.clone(),
+                what,
+            }),
+        None => {
+            ws.forget_factorisation();
+            Ok(())
+        }
+    }
 }
 
-/// Calls `f` on every observer: the built-in ones, then the caller's.
+/// Gives every observer its state back from a checkpoint, by name: a built-in output must find its
+/// own; an observer of the caller's that the checkpointed run did not have starts from nothing (it
+/// decides whether it can).
+fn restore_observers(
+    cp: &Checkpoint,
+    file: &str,
+    outputs: &mut Outputs,
+    extra: &mut [&mut dyn Observer],
+) -> Result<(), AppError> {
+    let bad = |what: String| AppError::Checkpoint {
+        file: file.to_string(),
+        what,
+    };
+    for o in outputs.iter_mut() {
+        let saved = cp
+            .observers
+            .get(o.name())
+            .ok_or_else(|| bad(format!("it holds no state for `{}`", o.name())))?;
+        o.restore(saved).map_err(bad)?;
+    }
+    for o in extra.iter_mut() {
+        let saved = cp
+            .observers
+            .get(o.name())
+            .unwrap_or(&serde_json::Value::Null);
+        o.restore(saved).map_err(bad)?;
+    }
+    Ok(())
+}
+
+/// What the steps took, counted over the run.
+#[derive(Debug, Default)]
+struct Tally {
+    steps: u64,
+    iterations: usize,
+    cuts: u32,
+    retries: u32,
+    cut_log: Vec<CutEvent>,
+}
+
+impl Tally {
+    /// Counts a converged step `k` (starting at `t`).
+    fn add(&mut self, k: u64, t: f64, info: &StepInfo, arc: &[f64]) {
+        self.iterations += info.iterations;
+        self.cuts += info.cuts;
+        self.retries += info.retries;
+        if let Some(c) = info.last_cut {
+            if self.cut_log.len() < MAX_CUT_LOG {
+                self.cut_log.push(CutEvent {
+                    t,
+                    cuts: info.cuts,
+                    dt: c.dt,
+                    residual: c.residual,
+                    node: c.node,
+                    arc: arc[c.node],
+                });
+            }
+        }
+        self.steps = k;
+    }
+}
+
+/// The stepping of a run: its Model and specification, State, Workspace, results and outputs.
+struct Stepper<'a, 'c> {
+    ctx: &'c RunContext<'c>,
+    state: &'a mut dynamics::DynState,
+    ws: &'a mut DynWorkspace,
+    res: &'a mut LineResults,
+    outputs: &'a mut Outputs,
+    tally: Tally,
+}
+
+impl Stepper<'_, '_> {
+    /// Steps from `first` to the end of the run, every converged step handed to every observer;
+    /// returns why the run stopped early, if it did.
+    fn steps(
+        &mut self,
+        first: u64,
+        extra: &mut [&mut dyn Observer],
+        opts: &RunOptions,
+    ) -> Result<Option<Stop>, AppError> {
+        let (dm, spec) = (self.ctx.model, self.ctx.spec);
+        let n_steps = (spec.duration / spec.dt).round() as u64;
+        for k in first..=n_steps {
+            let info = match dynamics::advance(dm, self.state, self.ws, spec.dt) {
+                Ok(info) => info,
+                Err(e) => return Ok(Some(Stop::Failed(e))),
+            };
+            self.tally
+                .add(k, (k - 1) as f64 * spec.dt, &info, &dm.line.arc);
+            self.state.t = k as f64 * spec.dt;
+            dynamics::results(dm, self.state, self.ws, self.res);
+            if let Some((field, node)) = catena_fe::assembly::first_non_finite(
+                self.res,
+                &self.state.u,
+                &self.state.v,
+                &self.state.a,
+            ) {
+                // The step is not handed to the observers: the run ends at the one before.
+                self.state.t = (k - 1) as f64 * spec.dt;
+                self.tally.steps = k - 1;
+                return Ok(Some(Stop::NonFinite {
+                    t: k as f64 * spec.dt,
+                    field,
+                    node,
+                    arc: dm.line.arc[node],
+                }));
+            }
+            let view = StepView {
+                t: self.state.t,
+                step: k,
+                state: self.state,
+                results: self.res,
+                info,
+                record: k as usize % spec.output_every == 0,
+                envelope: self.state.t >= spec.envelope_start - 1e-9 * spec.dt,
+            };
+            let (mut wants, mut stop) = (false, None);
+            each(self.outputs, extra, |o| {
+                if let Control::Stop(reason) = o.step(self.ctx, &view)? {
+                    stop = Some(Stop::Interrupted(reason));
+                }
+                wants |= o.wants_checkpoint(k);
+                Ok(())
+            })?;
+            if wants {
+                self.checkpoint(k, extra)?;
+            }
+            if stop.is_some() {
+                return Ok(stop);
+            }
+            if opts.stop_after == Some(k) && k < n_steps {
+                return Ok(Some(Stop::StoppedAfter(k)));
+            }
+        }
+        Ok(None)
+    }
+
+    /// A checkpoint after step `k`: the State, the solver memory and every observer's state by
+    /// name, handed to the observers that asked for it.
+    fn checkpoint(&mut self, k: u64, extra: &mut [&mut dyn Observer]) -> Result<(), AppError> {
+        let mut observers = BTreeMap::new();
+        for o in self.outputs.iter_mut() {
+            observers.insert(o.name().to_string(), o.save()?);
+        }
+        for o in extra.iter_mut() {
+            observers.insert(o.name().to_string(), o.save()?);
+        }
+        let scene = &self.ctx.statics.scene;
+        let cp = Checkpoint {
+            catena_version: VERSION.to_string(),
+            scene_file: scene.file.clone(),
+            scene_hash: crate::scene::text_hash(&scene.text),
+            step: k,
+            state: self.state.clone(),
+            solver: self.ws.solver_memory(),
+            observers,
+        };
+        for o in extra.iter_mut() {
+            if o.wants_checkpoint(k) {
+                o.checkpoint(&cp)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Calls `f` on every observer: the built-in outputs, then the caller's.
 fn each(
-    builtin: Builtins<'_>,
+    outputs: &mut Outputs,
     extra: &mut [&mut dyn Observer],
     mut f: impl FnMut(&mut dyn Observer) -> Result<(), AppError>,
 ) -> Result<(), AppError> {
-    for o in builtin.into_iter().flatten() {
+    for o in outputs.iter_mut() {
         f(o)?;
     }
     for o in extra.iter_mut() {
