@@ -58,7 +58,10 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
         file: file.clone(),
         source,
     };
-    let q = statics::catenary_seed(&scene.model, &scene.ends).map_err(st_err)?;
+    // A default anchor height is the pipe resting at its static embedment (found here, not in the
+    // parser).
+    let ends = scene.ends.positions(&scene.model, scene.line.2);
+    let q = statics::catenary_seed(&scene.model, &ends).map_err(st_err)?;
     let given_neutral = scene
         .flexjoint_neutral_from_vertical
         .map(|phi| -std::f64::consts::FRAC_PI_2 - phi);

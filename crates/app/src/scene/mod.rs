@@ -7,9 +7,15 @@
 //! ([`edit`]: `dynamic.time_step`, `mesh[*].element_length`) and build the edited scene from the
 //! document, never by editing text.
 
+mod checks;
+mod dynamic;
 pub mod edit;
+mod line;
 pub mod riser;
+mod sea;
 pub mod seabed;
+mod size;
+pub mod tables;
 
 use std::path::{Path, PathBuf};
 

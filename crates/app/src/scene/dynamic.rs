@@ -1,0 +1,563 @@
+//! The dynamic part of a scene: `[dynamic]`, the top motion, gauges, structural damping and
+//! fatigue, checked and turned into a [`DynamicSpec`].
+
+use catena_fe::dynamics::{DynamicSettings, Scheme};
+use catena_fe::environment::{Environment, Hydro};
+use catena_fe::motion::TopMotion;
+use catena_fe::vessel::Vessel;
+
+use super::checks::{positive, Site};
+use super::sea::{vessel_of, waves_of};
+use super::tables::*;
+use super::{invalid, Resolver};
+use crate::error::SceneError;
+use crate::fatigue::sn::SnCurve;
+use crate::fatigue::stress::{Fibre, PipeSection};
+use crate::fatigue::FatigueSpec;
+
+/// A gauge: bending moment and tension recorded at an arc length (interpolated between nodes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gauge {
+    /// Its name.
+    pub name: String,
+    /// Arc length from the top, m (for a `midway_touchdown_lift` gauge, set after the statics).
+    pub arc: f64,
+    /// If given: the gauge lies midway (in arc length) between the static touchdown point and the one
+    /// with the top raised by this much, m.
+    pub midway_touchdown_lift: Option<f64>,
+}
+
+/// Records a run keeps at most when its scene gives no `dynamic.output_interval`.
+pub const DEFAULT_MAX_RECORDS: f64 = 10_000.0;
+
+/// The dynamic part of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicSpec {
+    /// Solver settings.
+    pub settings: DynamicSettings,
+    /// The environment (hydrodynamics and current), each part only if the scene has it.
+    pub environment: Environment,
+    /// The top end's prescribed motion, if any.
+    pub motion: Option<TopMotion>,
+    /// The vessel carrying the top end (`[vessel]`), if any.
+    pub vessel: Option<Vessel>,
+    /// Stiffness-proportional structural damping `β = ζ·T/π` (s), if `[structural_damping]`.
+    pub structural_damping: Option<f64>,
+    /// Fatigue counting (`[fatigue]`), if any.
+    pub fatigue: Option<FatigueSpec>,
+    /// The pipe's section for wall tension and stress range graphs: `[fatigue]`'s, or from
+    /// `line.wall` and `line.contents_density` (no internal pressure) when both are given.
+    pub section: Option<PipeSection>,
+    /// Duration, s.
+    pub duration: f64,
+    /// Time step, s.
+    pub dt: f64,
+    /// Output every this many steps.
+    pub output_every: usize,
+    /// Envelopes are taken from this time on, s.
+    pub envelope_start: f64,
+    /// Gauges.
+    pub gauges: Vec<Gauge>,
+}
+
+pub(super) fn dynamic_spec(
+    file: &str,
+    raw: &RiserFile,
+    d: &DynamicTable,
+    hydro: Option<Hydro>,
+    site: Site,
+    files: &dyn Resolver,
+) -> Result<DynamicSpec, SceneError> {
+    let length = site.length;
+    positive(file, "dynamic.duration", d.duration, "a duration in s")?;
+    positive(file, "dynamic.time_step", d.time_step, "a time step in s")?;
+    if d.time_step > d.duration {
+        return Err(invalid(
+            file,
+            "dynamic.time_step",
+            "a time step no longer than the duration",
+        ));
+    }
+    // Default: every step, up to DEFAULT_MAX_RECORDS records; beyond that the smallest whole
+    // multiple of the time step that keeps the run within it (a 3-hour storm at 0.05 s would
+    // otherwise write every one of its 216 000 steps: gigabytes).
+    let out = d.output_interval.unwrap_or_else(|| {
+        let steps = (d.duration / d.time_step).ceil();
+        d.time_step * (steps / DEFAULT_MAX_RECORDS).ceil().max(1.0)
+    });
+    positive(file, "dynamic.output_interval", out, "an interval in s")?;
+    let every = (out / d.time_step).round();
+    if every < 1.0 || ((every * d.time_step) - out).abs() > 1e-9 * out {
+        return Err(invalid(
+            file,
+            "dynamic.output_interval",
+            "a whole multiple of dynamic.time_step",
+        ));
+    }
+    let scheme = scheme_of(file, d)?;
+    positive(
+        file,
+        "dynamic.tolerance",
+        d.tolerance,
+        "a relative tolerance",
+    )?;
+    let motion = motion_of(file, raw, files)?;
+    let gauges = gauges_of(file, raw, length)?;
+    if !(d.envelope_start >= 0.0 && d.envelope_start < d.duration) {
+        return Err(invalid(
+            file,
+            "dynamic.envelope_start",
+            "a time in [0, duration) s",
+        ));
+    }
+    let waves = match &raw.waves {
+        Some(w) => Some(waves_of(file, w, site, d.time_step)?),
+        None => None,
+    };
+    let vessel = match (&raw.vessel, &waves) {
+        (Some(v), Some(w)) => Some(vessel_of(file, v, w, site, files)?),
+        (Some(_), None) => {
+            return Err(invalid(
+                file,
+                "vessel",
+                "a [waves] table as well (the vessel moves with the waves)",
+            ))
+        }
+        (None, _) => None,
+    };
+    let structural_damping = structural_damping_of(file, raw)?;
+    let fatigue = match &raw.fatigue {
+        Some(t) => Some(fatigue_of(file, raw, t, d, site)?),
+        None => None,
+    };
+    let l = &raw.line;
+    let section = fatigue
+        .as_ref()
+        .map(|f| f.section)
+        .or(match (l.wall, l.contents_density) {
+            (Some(wall), Some(contents_density)) => Some(PipeSection {
+                od: l.od,
+                wall,
+                contents_density,
+                internal_pressure: 0.0,
+                water_density: site.water_density,
+                gravity: site.gravity,
+                water_depth: site.water_depth,
+            }),
+            _ => None,
+        });
+    Ok(DynamicSpec {
+        fatigue,
+        section,
+        structural_damping,
+        environment: Environment {
+            hydro,
+            waves,
+            water_level: site.water_depth,
+        },
+        motion,
+        vessel,
+        settings: DynamicSettings {
+            scheme,
+            tol: d.tolerance,
+            max_iter: d.max_iterations,
+            max_cuts: d.max_step_cuts,
+        },
+        duration: d.duration,
+        dt: d.time_step,
+        output_every: every as usize,
+        envelope_start: d.envelope_start,
+        gauges,
+    })
+}
+
+/// `dynamic.scheme` with its α, or β and γ.
+fn scheme_of(file: &str, d: &DynamicTable) -> Result<Scheme, SceneError> {
+    Ok(match d.scheme {
+        SchemeKey::Hht => {
+            if d.beta.is_some() || d.gamma.is_some() {
+                return Err(invalid(
+                    file,
+                    "dynamic.beta",
+                    "no beta or gamma with scheme = \"hht\" (they follow from alpha)",
+                ));
+            }
+            let alpha = d.alpha.unwrap_or(-0.1);
+            if !(-1.0 / 3.0..=0.0).contains(&alpha) {
+                return Err(invalid(
+                    file,
+                    "dynamic.alpha",
+                    format!("-1/3 <= alpha <= 0 (Hilber's convention), got {alpha}"),
+                ));
+            }
+            Scheme::Hht { alpha }
+        }
+        SchemeKey::Newmark => {
+            if d.alpha.is_some() {
+                return Err(invalid(
+                    file,
+                    "dynamic.alpha",
+                    "no alpha with scheme = \"newmark\"",
+                ));
+            }
+            let beta = d.beta.unwrap_or(0.25);
+            let gamma = d.gamma.unwrap_or(0.5);
+            if !(beta > 0.0 && beta <= 0.5) {
+                return Err(invalid(
+                    file,
+                    "dynamic.beta",
+                    format!("0 < beta <= 0.5, got {beta}"),
+                ));
+            }
+            if !(0.5..=1.0).contains(&gamma) {
+                return Err(invalid(
+                    file,
+                    "dynamic.gamma",
+                    format!("0.5 <= gamma <= 1, got {gamma}"),
+                ));
+            }
+            Scheme::Newmark { beta, gamma }
+        }
+    })
+}
+
+/// `[motion]`: exactly one of staged velocities, a harmonic motion or a series read through the
+/// resolver.
+fn motion_of(
+    file: &str,
+    raw: &RiserFile,
+    files: &dyn Resolver,
+) -> Result<Option<TopMotion>, SceneError> {
+    Ok(match &raw.motion {
+        None => None,
+        Some(m) => {
+            let count = [m.staged.is_some(), m.harmonic.is_some(), m.series.is_some()]
+                .iter()
+                .filter(|b| **b)
+                .count();
+            if count != 1 {
+                return Err(invalid(
+                    file,
+                    "motion",
+                    "exactly one of [motion.staged], [motion.harmonic], [motion.series]",
+                ));
+            }
+            if let Some(st) = &m.staged {
+                if st.stages.is_empty() {
+                    return Err(invalid(file, "motion.staged.stages", "at least one stage"));
+                }
+                for (i, s) in st.stages.iter().enumerate() {
+                    if !(s.duration >= 0.0
+                        && s.duration.is_finite()
+                        && s.vx.is_finite()
+                        && s.vz.is_finite())
+                    {
+                        return Err(invalid(
+                            file,
+                            format!("motion.staged.stages[{i}]"),
+                            "a duration >= 0 s and finite velocities in m/s",
+                        ));
+                    }
+                }
+                Some(TopMotion::Staged(
+                    st.stages.iter().map(|s| (s.duration, s.vx, s.vz)).collect(),
+                ))
+            } else if let Some(h) = &m.harmonic {
+                positive(file, "motion.harmonic.period", h.period, "a period in s")?;
+                if h.ramp.is_nan() || h.ramp < 0.0 {
+                    return Err(invalid(
+                        file,
+                        "motion.harmonic.ramp",
+                        "a ramp duration >= 0 s",
+                    ));
+                }
+                Some(TopMotion::Harmonic {
+                    surge: h.surge,
+                    heave: h.heave,
+                    period: h.period,
+                    phase: h.phase_deg.to_radians(),
+                    ramp: h.ramp,
+                })
+            } else if let Some(se) = &m.series {
+                let text = files.read(&se.file).map_err(|e| {
+                    invalid(
+                        file,
+                        "motion.series.file",
+                        format!("a readable CSV file ({e})"),
+                    )
+                })?;
+                let path = &se.file;
+                let mut pts = Vec::new();
+                for (ln, line) in text.lines().enumerate().skip(1) {
+                    if line.trim().is_empty() {
+                        continue;
+                    }
+                    let mut v = Vec::with_capacity(3);
+                    for (c, cell) in line.split(',').enumerate() {
+                        match cell.trim().parse::<f64>() {
+                            Ok(x) if x.is_finite() && x.abs() <= super::MAX_MAGNITUDE => v.push(x),
+                            _ => {
+                                return Err(invalid(
+                                    file,
+                                    "motion.series.file",
+                                    format!(
+                                        "{path}: line {}, column {}: a finite number (got \"{}\")",
+                                        ln + 1,
+                                        c + 1,
+                                        cell.trim()
+                                    ),
+                                ))
+                            }
+                        }
+                    }
+                    if v.len() != 3 || pts.last().is_some_and(|p: &(f64, f64, f64)| v[0] <= p.0) {
+                        return Err(invalid(
+                            file,
+                            "motion.series.file",
+                            format!(
+                                "{}: line {}: three numbers t, dx, dz with t increasing",
+                                path,
+                                ln + 1
+                            ),
+                        ));
+                    }
+                    pts.push((v[0], v[1], v[2]));
+                }
+                if pts.is_empty() {
+                    return Err(invalid(
+                        file,
+                        "motion.series.file",
+                        format!("{}: a header line and at least one row t, dx, dz", path),
+                    ));
+                }
+                Some(TopMotion::Series(pts))
+            } else {
+                None
+            }
+        }
+    })
+}
+
+/// `[[gauge]]`: distinct names, each at an arc length or midway between touchdown points.
+fn gauges_of(file: &str, raw: &RiserFile, length: f64) -> Result<Vec<Gauge>, SceneError> {
+    let mut gauges = Vec::new();
+    for (i, g) in raw.gauge.iter().enumerate() {
+        if g.name.is_empty() || g.name.contains('/') {
+            return Err(invalid(
+                file,
+                format!("gauge[{i}].name"),
+                "a non-empty name without '/'",
+            ));
+        }
+        if let Some(j) = raw.gauge[..i].iter().position(|o| o.name == g.name) {
+            return Err(invalid(
+                file,
+                format!("gauge[{i}].name"),
+                format!(
+                    "a name no other gauge has (gauge[{j}] is also \"{}\")",
+                    g.name
+                ),
+            ));
+        }
+        match (g.arc, g.midway_touchdown_lift) {
+            (Some(arc), None) => {
+                if !(0.0..=length).contains(&arc) {
+                    return Err(invalid(
+                        file,
+                        format!("gauge[{i}].arc"),
+                        format!("an arc length from the top within [0, {length}] m"),
+                    ));
+                }
+                gauges.push(Gauge {
+                    name: g.name.clone(),
+                    arc,
+                    midway_touchdown_lift: None,
+                });
+            }
+            (None, Some(lift)) => {
+                positive(
+                    file,
+                    &format!("gauge[{i}].midway_touchdown_lift"),
+                    lift,
+                    "a lift of the top in m",
+                )?;
+                gauges.push(Gauge {
+                    name: g.name.clone(),
+                    arc: f64::NAN,
+                    midway_touchdown_lift: Some(lift),
+                });
+            }
+            _ => {
+                return Err(invalid(
+                    file,
+                    format!("gauge[{i}]"),
+                    "exactly one of `arc` (m) or `midway_touchdown_lift` (m)",
+                ))
+            }
+        }
+    }
+    Ok(gauges)
+}
+
+/// `[structural_damping]` → `β = ζ·T/π` (s), if the scene has it.
+fn structural_damping_of(file: &str, raw: &RiserFile) -> Result<Option<f64>, SceneError> {
+    Ok(match &raw.structural_damping {
+        Some(t) => {
+            if !(t.critical_percent.is_finite()
+                && t.critical_percent > 0.0
+                && t.critical_percent <= 100.0)
+            {
+                return Err(invalid(
+                    file,
+                    "structural_damping.critical_percent",
+                    format!(
+                        "a percentage of critical damping in (0, 100], got {}",
+                        t.critical_percent
+                    ),
+                ));
+            }
+            positive(file, "structural_damping.period", t.period, "a period in s")?;
+            Some(t.critical_percent / 100.0 * t.period / std::f64::consts::PI)
+        }
+        None => None,
+    })
+}
+
+/// `[fatigue]` → what the fatigue observer counts (see `docs/scene.md`).
+fn fatigue_of(
+    file: &str,
+    raw: &RiserFile,
+    t: &FatigueTable,
+    d: &DynamicTable,
+    site: Site,
+) -> Result<FatigueSpec, SceneError> {
+    let l = &raw.line;
+    let wall = l.wall.ok_or_else(|| {
+        invalid(
+            file,
+            "line.wall",
+            "the wall thickness in m (fatigue needs the section's stresses)",
+        )
+    })?;
+    let (curve, curve_name) = match &t.sn_curve {
+        SnKey::Name(n) => (
+            SnCurve::dnv(n).ok_or_else(|| {
+                invalid(
+                    file,
+                    "fatigue.sn_curve",
+                    format!(
+                        "one of {} or a table {{ m1, log_a1, m2, log_a2, knee_cycles }}, got \"{n}\"",
+                        crate::fatigue::sn::NAMES.join(", ")
+                    ),
+                )
+            })?,
+            n.clone(),
+        ),
+        SnKey::Table(c) => {
+            for (k, v) in [("m1", c.m1), ("log_a1", c.log_a1)] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(invalid(file, format!("fatigue.sn_curve.{k}"), "a number > 0"));
+                }
+            }
+            let lower = match (c.m2, c.log_a2, c.knee_cycles) {
+                (Some(m2), Some(a2), Some(knee)) if m2 > 0.0 && a2 > 0.0 && knee > 0.0 => {
+                    Some((m2, a2, knee))
+                }
+                (None, None, None) => None,
+                _ => {
+                    return Err(invalid(
+                        file,
+                        "fatigue.sn_curve",
+                        "m2, log_a2 and knee_cycles all > 0, or none of them (a single slope)",
+                    ))
+                }
+            };
+            (
+                SnCurve {
+                    m1: c.m1,
+                    log_a1: c.log_a1,
+                    lower: lower.map(|(m2, a2, _)| (m2, a2)),
+                    knee_cycles: lower.map(|(_, _, k)| k),
+                    thickness_exponent: c.thickness_exponent,
+                },
+                "user".to_string(),
+            )
+        }
+    };
+    if !(t.scf.is_finite() && t.scf >= 1.0) {
+        return Err(invalid(
+            file,
+            "fatigue.scf",
+            format!("a stress concentration factor >= 1, got {}", t.scf),
+        ));
+    }
+    let mut fibres = Vec::new();
+    for (i, f) in t.fibres.iter().enumerate() {
+        let fib = match f.as_str() {
+            "outer" => Fibre::Outer,
+            "inner" => Fibre::Inner,
+            other => {
+                return Err(invalid(
+                    file,
+                    format!("fatigue.fibres[{i}]"),
+                    format!("\"outer\" or \"inner\", got \"{other}\""),
+                ))
+            }
+        };
+        if !fibres.contains(&fib) {
+            fibres.push(fib);
+        }
+    }
+    if fibres.is_empty() {
+        return Err(invalid(
+            file,
+            "fatigue.fibres",
+            "at least one of \"outer\", \"inner\"",
+        ));
+    }
+    if let Some(f) = t.design_factor {
+        positive(file, "fatigue.design_factor", f, "a design fatigue factor")?;
+    }
+    let start = t.start.unwrap_or(d.envelope_start);
+    if !(start.is_finite() && start >= 0.0 && start < d.duration) {
+        return Err(invalid(file, "fatigue.start", "a time in [0, duration) s"));
+    }
+    let contents_density = t.contents_density.or(l.contents_density).ok_or_else(|| {
+        invalid(
+            file,
+            "fatigue.contents_density",
+            "the contents density in kg/m³ (here or in [line]): the wall tension needs it",
+        )
+    })?;
+    if !(contents_density.is_finite() && contents_density >= 0.0) {
+        return Err(invalid(
+            file,
+            "fatigue.contents_density",
+            "a density >= 0 kg/m³",
+        ));
+    }
+    if !t.internal_pressure.is_finite() {
+        return Err(invalid(
+            file,
+            "fatigue.internal_pressure",
+            "a pressure in Pa",
+        ));
+    }
+    Ok(FatigueSpec {
+        curve,
+        curve_name,
+        scf: t.scf,
+        fibres,
+        design_factor: t.design_factor,
+        start,
+        section: PipeSection {
+            od: l.od,
+            wall,
+            contents_density,
+            internal_pressure: t.internal_pressure,
+            water_density: site.water_density,
+            gravity: site.gravity,
+            water_depth: site.water_depth,
+        },
+    })
+}

@@ -1,0 +1,335 @@
+//! The line of a scene: `[line]` and `[[mesh]]` into the elements' properties and segments, the
+//! seabed contact and flexjoint, and the ends (`[ends]`), each checked. No physics here: a default
+//! anchor height (the pipe resting at its static embedment) is found by the statics
+//! ([`Ends::positions`]).
+
+use catena_fe::beam::Section;
+use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
+use catena_fe::statics::EndPositions;
+
+use super::checks::positive;
+use super::invalid;
+use super::tables::{RiserFile, SupportKey};
+use crate::error::SceneError;
+
+/// The uniform line's properties: `(EA, EI, submerged weight, mass)` in N, N·m², N/m, kg/m.
+pub type LineProperties = (f64, f64, f64, f64);
+
+/// The line's ends as the scene gives them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ends {
+    /// The top end `(x, z)`, m (z above the mudline).
+    pub top: (f64, f64),
+    /// The anchor's x, m.
+    pub anchor_x: f64,
+    /// The anchor's height above the mudline, m; `None`: the pipe rests on the seabed at its static
+    /// embedment there, which the statics find.
+    pub anchor_z: Option<f64>,
+}
+
+impl Ends {
+    /// The end positions for the statics. A default anchor height is `D/2 − e`, `e` the static
+    /// embedment of the line's submerged weight `w` (N/m) on the Model's seabed (0 if none is found).
+    pub fn positions(&self, model: &LineModel, w: f64) -> EndPositions {
+        let z = self.anchor_z.unwrap_or_else(|| {
+            let emb = catena_fe::statics::static_embedment(model, w).unwrap_or(0.0);
+            0.5 * model.node_od[model.nodes() - 1] - emb
+        });
+        EndPositions {
+            top: self.top,
+            anchor: (self.anchor_x, z),
+        }
+    }
+
+    /// The anchor height the scene's checks use: the given one, or the pipe resting on the mudline
+    /// (`D/2`; its static embedment lowers it by at most a fraction of a diameter).
+    pub fn anchor_z_for_checks(&self, od: f64) -> f64 {
+        self.anchor_z.unwrap_or(0.5 * od)
+    }
+}
+
+/// `[line]` → EA, EI, submerged weight and mass, from the stiffnesses and weights given, or from
+/// the steel's modulus, the wall and the densities.
+pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LineProperties, SceneError> {
+    let (l, env) = (&raw.line, &raw.environment);
+    positive(file, "line.length", l.length, "a length in m")?;
+    positive(file, "line.od", l.od, "a diameter in m")?;
+    if !(0.005..=5.0).contains(&l.od) {
+        return Err(invalid(
+            file,
+            "line.od",
+            format!("an outer diameter between 0.005 and 5 m (got {} m)", l.od),
+        ));
+    }
+    let pi = std::f64::consts::PI;
+    let (a_steel, a_inner) = match l.wall {
+        Some(t) => {
+            if !(t > 0.0 && 2.0 * t < l.od) {
+                return Err(invalid(
+                    file,
+                    "line.wall",
+                    format!("0 < wall < od/2 (got {t})"),
+                ));
+            }
+            let id = l.od - 2.0 * t;
+            (pi / 4.0 * (l.od * l.od - id * id), pi / 4.0 * id * id)
+        }
+        None => (f64::NAN, f64::NAN),
+    };
+    let i_steel = l.wall.map(|t| {
+        let id = l.od - 2.0 * t;
+        pi / 64.0 * (l.od.powi(4) - id.powi(4))
+    });
+    let (ea, ei) = match (l.ea, l.ei, l.youngs_modulus) {
+        (Some(ea), Some(ei), None) => (ea, ei),
+        (None, None, Some(e)) => {
+            let i = i_steel.ok_or_else(|| {
+                invalid(
+                    file,
+                    "line.wall",
+                    "the wall thickness in m (needed with line.youngs_modulus)",
+                )
+            })?;
+            positive(file, "line.youngs_modulus", e, "a modulus in Pa")?;
+            (e * a_steel, e * i)
+        }
+        _ => {
+            return Err(invalid(
+                file,
+                "line.youngs_modulus",
+                "either youngs_modulus (with wall) or both ea and ei",
+            ))
+        }
+    };
+    positive(file, "line.ea", ea, "an axial stiffness in N")?;
+    positive(file, "line.ei", ei, "a bending stiffness in N·m²")?;
+    let g = env.gravity;
+    let a_outer = pi / 4.0 * l.od * l.od;
+    let from_densities = match (l.steel_density, l.contents_density) {
+        (Some(rs), Some(rc)) => {
+            if l.wall.is_none() {
+                return Err(invalid(
+                    file,
+                    "line.wall",
+                    "the wall thickness (needed with the densities)",
+                ));
+            }
+            let m = rs * a_steel + rc * a_inner;
+            Some((m, (m - env.water_density * a_outer) * g))
+        }
+        (None, None) => None,
+        _ => {
+            return Err(invalid(
+                file,
+                "line.contents_density",
+                "both steel_density and contents_density, or neither",
+            ))
+        }
+    };
+    let (mass, weight) = match (l.mass, l.submerged_weight, from_densities) {
+        (Some(m), Some(w), None) => (m, w),
+        (None, None, Some(mw)) => mw,
+        _ => return Err(invalid(
+            file,
+            "line.submerged_weight",
+            "either mass and submerged_weight, or steel_density and contents_density (with wall)",
+        )),
+    };
+    positive(
+        file,
+        "line.submerged_weight",
+        weight,
+        "a submerged weight in N/m",
+    )?;
+    positive(file, "line.mass", mass, "a mass in kg/m")?;
+    Ok((ea, ei, weight, mass))
+}
+
+/// `[[mesh]]` → the segments, from the top, each ending at its `to` (the last at the line's length).
+pub(super) fn segments(
+    file: &str,
+    raw: &RiserFile,
+    (ea, ei, weight, mass): LineProperties,
+) -> Result<Vec<Segment>, SceneError> {
+    let l = &raw.line;
+    if raw.mesh.is_empty() {
+        return Err(invalid(file, "mesh", "at least one [[mesh]] section"));
+    }
+    let mut segments = Vec::new();
+    let mut from = 0.0;
+    for (i, m) in raw.mesh.iter().enumerate() {
+        if m.to.is_nan() || m.to <= from {
+            return Err(invalid(
+                file,
+                format!("mesh[{i}].to"),
+                format!(
+                    "an arc length beyond the previous section's end ({from} m), got {}",
+                    m.to
+                ),
+            ));
+        }
+        positive(
+            file,
+            &format!("mesh[{i}].element_length"),
+            m.element_length,
+            "an element length in m",
+        )?;
+        segments.push(Segment {
+            length: m.to - from,
+            element_length: m.element_length,
+            section: Section { ea, ei },
+            weight,
+            mass,
+            od: l.od,
+        });
+        from = m.to;
+    }
+    if (from - l.length).abs() > 1e-9 * l.length {
+        return Err(invalid(
+            file,
+            format!("mesh[{}].to", raw.mesh.len() - 1),
+            format!(
+                "the line length {} m (the last section must end there), got {from}",
+                l.length
+            ),
+        ));
+    }
+    Ok(segments)
+}
+
+/// The line Model: segments, supports, the seabed contact (`[seabed]`) and the flexjoint
+/// (`[flexjoint]`, its neutral angle set by the statics).
+pub(super) fn line_model(
+    file: &str,
+    raw: &RiserFile,
+    segments: Vec<Segment>,
+) -> Result<LineModel, SceneError> {
+    let (l, env) = (&raw.line, &raw.environment);
+    let seabed = match &raw.seabed {
+        Some(t) => Some(SeabedContact {
+            seabed: t.build(file, "seabed", Some(l.od), Some(env.water_density))?,
+            mudline_z: 0.0,
+        }),
+        None => None,
+    };
+    let flexjoint = match &raw.flexjoint {
+        Some(f) => {
+            positive(
+                file,
+                "flexjoint.stiffness",
+                f.stiffness,
+                "a rotational stiffness in N·m/rad",
+            )?;
+            Some((f.stiffness, 0.0))
+        }
+        None => None,
+    };
+    let support = |s: SupportKey| match s {
+        SupportKey::Pinned => Support::Pinned,
+        SupportKey::Fixed => Support::Fixed,
+    };
+    let spec = LineSpec {
+        segments,
+        top: support(raw.ends.top),
+        anchor: support(raw.ends.anchor),
+        seabed,
+        flexjoint,
+    };
+    LineModel::build(&spec).map_err(|e| invalid(file, "mesh", e.to_string()))
+}
+
+/// `[ends]`, checked: finite coordinates, the top above the mudline, within the water and on the
+/// vessel side of the anchor, the anchor below the surface and above the top's height, the line
+/// longer than the chord between them. Without `anchor_z` the line must have a seabed.
+pub(super) fn ends(file: &str, raw: &RiserFile) -> Result<Ends, SceneError> {
+    let (e, l, env) = (&raw.ends, &raw.line, &raw.environment);
+    for (k, v) in [
+        ("ends.top_x", e.top_x),
+        ("ends.top_z", e.top_z),
+        ("ends.anchor_x", e.anchor_x),
+    ] {
+        if !v.is_finite() {
+            return Err(invalid(file, k, "a finite coordinate in m"));
+        }
+    }
+    if e.anchor_z.is_none() && raw.seabed.is_none() {
+        return Err(invalid(
+            file,
+            "ends.anchor_z",
+            "the anchor height in m (required without a [seabed])",
+        ));
+    }
+    let ends = Ends {
+        top: (e.top_x, e.top_z),
+        anchor_x: e.anchor_x,
+        anchor_z: e.anchor_z,
+    };
+    let anchor_z = ends.anchor_z_for_checks(l.od);
+    let chord = ((e.top_x - e.anchor_x).powi(2) + (e.top_z - anchor_z).powi(2)).sqrt();
+    if l.length <= chord {
+        return Err(invalid(
+            file,
+            "line.length",
+            format!(
+                "a length longer than the distance between the ends ({chord:.3} m), got {} m",
+                l.length
+            ),
+        ));
+    }
+    if e.top_x <= e.anchor_x {
+        return Err(invalid(
+            file,
+            "ends.top_x",
+            "a top end on the vessel side of the anchor (top_x > anchor_x)",
+        ));
+    }
+    if e.top_z > env.water_depth {
+        return Err(invalid(
+            file,
+            "ends.top_z",
+            format!("a height within the water depth {} m", env.water_depth),
+        ));
+    }
+    if e.top_z <= 0.5 * l.od {
+        return Err(invalid(
+            file,
+            "ends.top_z",
+            format!(
+                "a top end above the mudline: height in m above it, > od/2 = {} m (got {})",
+                0.5 * l.od,
+                e.top_z
+            ),
+        ));
+    }
+    if anchor_z > env.water_depth {
+        return Err(invalid(
+            file,
+            "ends.anchor_z",
+            format!(
+                "an anchor below the sea surface (height above the mudline at most the water depth {} m, got {anchor_z})",
+                env.water_depth
+            ),
+        ));
+    }
+    // A given anchor height: at most 5 diameters below the mudline (catena models no buried
+    // line). The default, at the static embedment, may be deeper on a very soft seabed (0.6 m
+    // for the SCR on su0 = 0, a gradient of 650 Pa/m).
+    if e.anchor_z.is_some() && anchor_z < -5.0 * l.od {
+        return Err(invalid(
+            file,
+            "ends.anchor_z",
+            format!(
+                "an anchor at most 5 diameters ({:.3} m) below the mudline (got {anchor_z:.3} m): catena models no buried line",
+                5.0 * l.od
+            ),
+        ));
+    }
+    if e.top_z <= anchor_z {
+        return Err(invalid(
+            file,
+            "ends.top_z",
+            format!("a top end above the anchor (anchor_z = {anchor_z} m)"),
+        ));
+    }
+    Ok(ends)
+}
