@@ -584,14 +584,11 @@ impl Waves {
                 let e1 = exp_nonpositive(k[j] * zs);
                 let e2 = e2kd[j] / e1;
                 let (cz, sz) = ((e1 + e2) * inv_den[j], (e1 - e2) * inv_den[j]);
-                let (sp, cp) = (sps[j], cps[j]);
-                t0[j] = aw[j] * cz * cp;
-                t1[j] = aw[j] * sz * sp;
-                t2[j] = aw2[j] * cz * sp;
-                t3[j] = aw2[j] * sz * cp;
+                let a = (aw[j], aw2[j], if JERK { aw3[j] } else { 0.0 });
+                let t = component_terms::<JERK>(a, (cz, sz), (sps[j], cps[j]));
+                (t0[j], t1[j], t2[j], t3[j]) = (t[0], t[1], t[2], t[3]);
                 if JERK {
-                    t4[j] = aw3[j] * cz * cp;
-                    t5[j] = aw3[j] * sz * sp;
+                    (t4[j], t5[j]) = (t[4], t[5]);
                 }
             }
         }
@@ -608,14 +605,12 @@ impl Waves {
             let (aw3, t4, t5) = (&aw3[dj..nj], &mut t4[dj..], &mut t5[dj..]);
             for j in 0..k.len() {
                 let cz = exp_nonpositive(k[j] * zs) * inv_den[j];
-                let (sp, cp) = (sps[j], cps[j]);
-                t0[j] = aw[j] * cz * cp;
-                t1[j] = aw[j] * cz * sp;
-                t2[j] = aw2[j] * cz * sp;
-                t3[j] = aw2[j] * cz * cp;
+                // Deep water: both depth factors are e^{kz'}.
+                let a = (aw[j], aw2[j], if JERK { aw3[j] } else { 0.0 });
+                let t = component_terms::<JERK>(a, (cz, cz), (sps[j], cps[j]));
+                (t0[j], t1[j], t2[j], t3[j]) = (t[0], t[1], t[2], t[3]);
                 if JERK {
-                    t4[j] = aw3[j] * cz * cp;
-                    t5[j] = aw3[j] * cz * sp;
+                    (t4[j], t5[j]) = (t[4], t[5]);
                 }
             }
         }
@@ -646,6 +641,31 @@ impl Waves {
         };
         Some((kin, jerk))
     }
+}
+
+/// One component's terms of the kinematics' sums (the one place they are written; the finite-depth
+/// and the deep-water loops both call it): velocity `aω·C·cos φ`, `aω·S·sin φ`, acceleration
+/// `aω²·C·sin φ`, `aω²·S·cos φ` and, with `JERK`, `aω³·C·cos φ`, `aω³·S·sin φ`, for the amplitudes
+/// `(aω, aω², aω³)`, the depth factors `(C, S)` (`cosh k(z'+d)/sinh kd`, `sinh k(z'+d)/sinh kd`; both
+/// `e^{kz'}` in deep water) and `(sin φ, cos φ)`.
+#[inline(always)]
+fn component_terms<const JERK: bool>(
+    (aw, aw2, aw3): (f64, f64, f64),
+    (cz, sz): (f64, f64),
+    (sp, cp): (f64, f64),
+) -> [f64; 6] {
+    let mut t = [
+        aw * cz * cp,
+        aw * sz * sp,
+        aw2 * cz * sp,
+        aw2 * sz * cp,
+        0.0,
+        0.0,
+    ];
+    if JERK {
+        (t[4], t[5]) = (aw3 * cz * cp, aw3 * sz * sp);
+    }
+    t
 }
 
 /// [`Waves::kinematics_with`], compiled for the baseline processor and again for AVX2, chosen

@@ -97,10 +97,18 @@ pub struct SeabedTrial {
     pub next: SeabedHistory,
 }
 
+/// The seabed's total force per length `P + F_b + F_d` (N/m, upward): the one place it is summed
+/// (a trial's [`SeabedTrial::total`] and the residual passes' responses, the same values to the bit;
+/// a law without damping passes `F_d = 0`).
+#[inline(always)]
+fn total_force(resistance: f64, buoyancy: f64, damping: f64) -> f64 {
+    resistance + buoyancy + damping
+}
+
 impl SeabedTrial {
     /// `P + F_b + F_d`, N/m (upward).
     pub fn total(&self) -> f64 {
-        self.resistance + self.buoyancy + self.damping
+        total_force(self.resistance, self.buoyancy, self.damping)
     }
 
     /// What a residual needs of it.
@@ -168,7 +176,7 @@ impl Seabed {
                 let ((p, dp), (fd, dfd)) = (l.force(z), l.damping_force(z, z_rate));
                 let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
                 SeabedResponse {
-                    total: p + buoyancy + fd,
+                    total: total_force(p, buoyancy, fd),
                     tangent: dp + db,
                     damping_coefficient: dfd,
                 }
@@ -198,7 +206,8 @@ impl Seabed {
         }
         let (buoyancy, db) = self.buoyancy.map_or((0.0, 0.0), |b| b.force(z));
         SeabedResponse {
-            total: t.p + buoyancy + 0.0,
+            // The law has no damping force.
+            total: total_force(t.p, buoyancy, 0.0),
             tangent: t.tangent + db,
             damping_coefficient: 0.0,
         }
