@@ -659,10 +659,10 @@ fn finite(x: f64) -> serde_json::Value {
 }
 
 /// Measured cost of one element-step (`benches/README.md`, the scaling table: 0.38–0.39 µs for the
-/// linear seabed on this project's reference machine), the factor for the Randolph–Quiggin law (a
-/// 300 s storm: 4.45 s against 2.31 s) and for 400 wave components (+52 % a step).
+/// linear seabed on this project's reference machine; a seabed law's factor is its
+/// `Law::relative_cost`, e.g. 1.9 for the Randolph–Quiggin law: a 300 s storm, 4.45 s against
+/// 2.31 s) and for 400 wave components (+52 % a step).
 const US_PER_ELEMENT_STEP: f64 = 0.39;
-const RQ_FACTOR: f64 = 1.9;
 const WAVES_FACTOR_400: f64 = 1.52;
 
 /// What one riser scene would run, as lines of text, with its warnings.
@@ -671,7 +671,6 @@ fn describe_scene(
     t: &mut String,
     warnings: &mut Vec<String>,
 ) -> f64 {
-    use catena_seabed::law::Law;
     let size = scene.size;
     let _ = writeln!(t, "  title: {}", scene.title);
     let mut effects = vec![format!(
@@ -681,13 +680,8 @@ fn describe_scene(
     )];
     let mut factor = 1.0;
     if let Some(sb) = &scene.model.seabed {
-        effects.push(match sb.seabed.law {
-            Law::Linear(_) => "linear seabed".to_string(),
-            Law::RandolphQuiggin(_) => {
-                factor *= RQ_FACTOR;
-                "Randolph–Quiggin seabed".to_string()
-            }
-        });
+        factor *= sb.seabed.law.relative_cost();
+        effects.push(sb.seabed.law.title().to_string());
         if sb.seabed.buoyancy.is_some() {
             effects.push("soil buoyancy".into());
         }

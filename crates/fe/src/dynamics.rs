@@ -80,7 +80,7 @@ use crate::motion::{Kinematics as TopKinematics, TopMotion};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
 use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
-use crate::waves::{Kinematics, WaveScratch};
+use crate::waves::{Kinematics, WaveKinematics, WaveScratch};
 
 pub use crate::integrator::{sdof_free_vibration, Scheme};
 
@@ -578,31 +578,58 @@ enum Pass {
     Tangent,
 }
 
-/// The water kinematics at each node at `t` into `ws.wave_kin`: evaluated at the positions of the
-/// workspace's iterate (the predictor), or, when the waves are sampled on a time grid
-/// (`kinematics_interval` h > 0), interpolated between the samples at the grid times around `t`
-/// ([`crate::wave_sampling`]), new samples being taken from the committed `state` when the step
-/// first needs them. Nothing without waves (or without hydrodynamics to load the line with them).
+/// The water kinematics at each node at `t` into `ws.wave_kin` (nothing without waves, or without
+/// hydrodynamics to load the line with them): see [`water_kinematics`].
 fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWorkspace) {
     let env = &dm.environment;
     let (Some(waves), Some(_)) = (&env.waves, &env.hydro) else {
         return;
     };
-    let pl = &dm.placement;
-    let level = env.water_level;
-    let h = waves.kinematics_interval;
-    ws.grid_new = false;
+    let out = WaterOut {
+        kin: &mut ws.wave_kin,
+        scratch: &mut ws.wave_scratch,
+        grid: &mut ws.grid_trial,
+        grid_new: &mut ws.grid_new,
+    };
+    water_kinematics(waves, &dm.placement, env.water_level, state, t, &ws.u, out);
+}
+
+/// Where [`water_kinematics`] writes: each node's kinematics, the theory's scratch, and the new
+/// samples of the step (and whether it took any).
+struct WaterOut<'a, S> {
+    kin: &'a mut [Option<Kinematics>],
+    scratch: &'a mut S,
+    grid: &'a mut KinematicsGrid,
+    grid_new: &'a mut bool,
+}
+
+/// The water kinematics of any wave theory ([`WaveKinematics`]) at each node at `t`: evaluated at
+/// the positions of the iterate `u` (the predictor), or, when the waves are sampled on a time grid
+/// (`kinematics_interval` h > 0), interpolated between the samples at the grid times around `t`
+/// ([`crate::wave_sampling`]), new samples being taken from the committed `state` when the step
+/// first needs them.
+fn water_kinematics<W: WaveKinematics>(
+    waves: &W,
+    pl: &Placement,
+    level: f64,
+    state: &DynState,
+    t: f64,
+    u: &[f64],
+    out: WaterOut<'_, W::Scratch>,
+) {
+    let h = waves.sampling_interval();
+    *out.grid_new = false;
     // Node `i` at the iterate (the predictor).
-    let predicted = |u: &[f64], i: usize| {
+    let predicted = |i: usize| {
         (
             pl.base[3 * i] + u[3 * i],
             pl.base[3 * i + 1] + u[3 * i + 1] - level,
         )
     };
     if h <= 0.0 {
-        for (i, k) in ws.wave_kin.iter_mut().enumerate() {
-            let (x, z) = predicted(&ws.u, i);
-            *k = waves.kinematics_with(x, z, t, &mut ws.wave_scratch);
+        for (i, k) in out.kin.iter_mut().enumerate() {
+            let (x, z) = predicted(i);
+            *k = waves.water_at(x, z, t, out.scratch);
         }
         return;
     }
@@ -616,31 +643,23 @@ fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWork
             let p = |j: usize| pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j];
             (p(3 * i), p(3 * i + 1) - level)
         };
-        let n = ws.wave_kin.len();
-        for s in &mut ws.grid_trial.samples {
+        let n = out.kin.len();
+        for s in &mut out.grid.samples {
             s.resize(n, None); // sized once
         }
         let prev = state.wave_grid.as_ref();
-        fill_interval(
-            waves,
-            h,
-            m,
-            prev,
-            at,
-            &mut ws.grid_trial,
-            &mut ws.wave_scratch,
-        );
-        ws.grid_new = true;
+        fill_interval(waves, h, m, prev, at, out.grid, out.scratch);
+        *out.grid_new = true;
     }
-    let grid = reuse.unwrap_or(&ws.grid_trial);
+    let grid = reuse.unwrap_or(out.grid);
     let s = (t - (m - 1) as f64 * h) / h;
-    for (i, k) in ws.wave_kin.iter_mut().enumerate() {
+    for (i, k) in out.kin.iter_mut().enumerate() {
         *k = match (&grid.samples[0][i], &grid.samples[1][i]) {
             (Some(k0), Some(k1)) => Some(interpolate(k0, k1, s, h)),
             // Out of the water at a sample: the exact kinematics at the predicted position.
             _ => {
-                let (x, z) = predicted(&ws.u, i);
-                waves.kinematics_with(x, z, t, &mut ws.wave_scratch)
+                let (x, z) = predicted(i);
+                waves.water_at(x, z, t, out.scratch)
             }
         };
     }

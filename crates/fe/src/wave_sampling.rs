@@ -40,7 +40,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::waves::{Kinematics, WaveScratch, Waves};
+#[cfg(test)]
+use crate::waves::Waves;
+use crate::waves::{Kinematics, WaveKinematics};
 
 /// The kinematics at one node at a grid time: velocity, acceleration and jerk, `[x, z]` each.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -89,36 +91,34 @@ pub fn interpolate(k0: &Sample, k1: &Sample, s: f64, h: f64) -> Kinematics {
 
 /// Samples every node at time `t` into `out`, at the positions `(x, z)` (z up from the still
 /// water level) that `position(i)` gives.
-pub fn sample_nodes(
-    waves: &Waves,
+pub fn sample_nodes<W: WaveKinematics>(
+    waves: &W,
     t: f64,
     position: impl Fn(usize) -> (f64, f64),
     out: &mut [Option<Sample>],
-    sc: &mut WaveScratch,
+    sc: &mut W::Scratch,
 ) {
     for (i, o) in out.iter_mut().enumerate() {
         let (x, z) = position(i);
-        *o = waves
-            .kinematics_and_jerk_with(x, z, t, sc)
-            .map(|(k, j)| Sample {
-                v: k.velocity,
-                a: k.acceleration,
-                j,
-            });
+        *o = waves.water_and_jerk_at(x, z, t, sc).map(|(k, j)| Sample {
+            v: k.velocity,
+            a: k.acceleration,
+            j,
+        });
     }
 }
 
 /// Makes `grid` hold the samples of the interval `((m − 1)·h, m·h]`: the earlier one copied from
 /// `prev` when `prev` holds the interval before (each grid time is sampled once), else sampled;
 /// the later one sampled. `position(t, i)` is node `i`'s `(x, z)` at grid time `t`.
-pub fn fill_interval(
-    waves: &Waves,
+pub fn fill_interval<W: WaveKinematics>(
+    waves: &W,
     h: f64,
     m: u64,
     prev: Option<&KinematicsGrid>,
     position: impl Fn(f64, usize) -> (f64, f64),
     grid: &mut KinematicsGrid,
-    sc: &mut WaveScratch,
+    sc: &mut W::Scratch,
 ) {
     let (t0, t1) = ((m - 1) as f64 * h, m as f64 * h);
     match prev {

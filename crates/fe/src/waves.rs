@@ -643,6 +643,55 @@ impl Waves {
     }
 }
 
+/// The water kinematics a wave theory gives the line: what the dynamics' loads and the sampled
+/// kinematics ([`crate::wave_sampling`]) use of it, and all they use. Airy waves ([`Waves`])
+/// implement it; a new wave theory (a stream function, a Stokes wave, a kinematics table) is a type
+/// that implements it, in its own module beside this one.
+pub trait WaveKinematics {
+    /// What the kinematics keep between calls (e.g. the time phases of a `t`), in the Workspace.
+    type Scratch: Default + std::fmt::Debug + Send;
+
+    /// The velocity and acceleration of the water at `(x, z)` (z up from the still water level) at
+    /// `t`, or `None` above the surface.
+    fn water_at(&self, x: f64, z: f64, t: f64, sc: &mut Self::Scratch) -> Option<Kinematics>;
+
+    /// [`WaveKinematics::water_at`] and the acceleration's time derivative (m/s³).
+    fn water_and_jerk_at(
+        &self,
+        x: f64,
+        z: f64,
+        t: f64,
+        sc: &mut Self::Scratch,
+    ) -> Option<(Kinematics, [f64; 2])>;
+
+    /// The interval the kinematics are sampled at in the dynamics, s (0: exact at every step).
+    fn sampling_interval(&self) -> f64;
+}
+
+impl WaveKinematics for Waves {
+    type Scratch = WaveScratch;
+
+    #[inline]
+    fn water_at(&self, x: f64, z: f64, t: f64, sc: &mut WaveScratch) -> Option<Kinematics> {
+        self.kinematics_with(x, z, t, sc)
+    }
+
+    #[inline]
+    fn water_and_jerk_at(
+        &self,
+        x: f64,
+        z: f64,
+        t: f64,
+        sc: &mut WaveScratch,
+    ) -> Option<(Kinematics, [f64; 2])> {
+        self.kinematics_and_jerk_with(x, z, t, sc)
+    }
+
+    fn sampling_interval(&self) -> f64 {
+        self.kinematics_interval
+    }
+}
+
 /// One component's terms of the kinematics' sums (the one place they are written; the finite-depth
 /// and the deep-water loops both call it): velocity `aω·C·cos φ`, `aω·S·sin φ`, acceleration
 /// `aω²·C·sin φ`, `aω²·S·cos φ` and, with `JERK`, `aω³·C·cos φ`, `aω³·S·sin φ`, for the amplitudes

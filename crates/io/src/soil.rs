@@ -6,7 +6,6 @@ use std::path::Path;
 use catena::soil_test::SoilTestCase;
 use catena::AppError;
 use catena_seabed::element_test::TestResult;
-use catena_seabed::law::Law;
 
 /// Writes the CSV of a test.
 pub fn write_csv(path: &Path, case: &SoilTestCase, r: &TestResult) -> Result<(), AppError> {
@@ -54,10 +53,7 @@ pub fn text(case: &SoilTestCase, r: &TestResult, out: &Path, plot: Option<&Path>
     let _ = writeln!(
         text,
         "  model: {}, D = {d} m; {} legs, {} committed increments",
-        match case.seabed.law {
-            Law::Linear(_) => "linear",
-            Law::RandolphQuiggin(_) => "randolph-quiggin",
-        },
+        case.seabed.law.name(),
         case.legs.len(),
         r.rows.len() - 1
     );

@@ -69,6 +69,33 @@ pub enum Law {
     RandolphQuiggin(RandolphQuiggin),
 }
 
+impl Law {
+    /// The law's name in scene files and outputs (`model = "…"`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Law::Linear(_) => "linear",
+            Law::RandolphQuiggin(_) => "randolph-quiggin",
+        }
+    }
+
+    /// The law's name for people.
+    pub fn title(&self) -> &'static str {
+        match self {
+            Law::Linear(_) => "linear seabed",
+            Law::RandolphQuiggin(_) => "Randolph–Quiggin seabed",
+        }
+    }
+
+    /// A step's cost on this law relative to the linear law's, as measured on the storm cases
+    /// (`catena check`'s estimate of a run's time; 1 for a law not measured).
+    pub fn relative_cost(&self) -> f64 {
+        match self {
+            Law::Linear(_) => 1.0,
+            Law::RandolphQuiggin(_) => 1.9,
+        }
+    }
+}
+
 /// A seabed: a law and, optionally, soil buoyancy.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Seabed {
