@@ -6,8 +6,10 @@
 //! and the residual `G = M a + (1 + α) F − α F_n`, with its conventions) in [`crate::integrator`];
 //! the forces `F` — the structure ([`crate::assembly`]) and the one list of loads that the statics
 //! share ([`crate::loads`]: seabed, drag and wave inertia, structural damping) — and the prescribed
-//! dofs ([`crate::boundary`]). This module keeps the stepping: one attempt's Newton loop, the
-//! commit, predictor retries and step cuts. `F` collects every non-inertial force as "internal
+//! dofs ([`crate::boundary`]); Newton's bookkeeping (what each iteration evaluates, the reuse of
+//! the last factorisation, backtracking, the divergence and convergence tests) in
+//! [`crate::newton`]. This module keeps the stepping: one attempt's loop (forces, residual,
+//! solve), the commit, predictor retries and step cuts. `F` collects every non-inertial force as "internal
 //! minus external"; `F_n` is kept in the State, so the step is exactly reproducible after a
 //! restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
 //! The first Newton iteration of a step reuses the Jacobian factorised last (same Δt) — a
@@ -77,6 +79,8 @@ use crate::integrator::StepCoefficients;
 use crate::loads::{self, penetration, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
+pub use crate::newton::{max_abs, residual_floor, MAX_BACKTRACKS};
+use crate::newton::{worst_node, Accepted, Newton, Pass, Verdict};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
 use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
@@ -566,18 +570,6 @@ fn forces_at_iterate(
     ws.f.copy_from_slice(&asm.residual);
 }
 
-/// What an evaluation of the forces at an iterate assembles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Pass {
-    /// The residual only.
-    Forces,
-    /// The residual, keeping each node's trial seabed history for [`commit`] (the iterate is
-    /// expected to converge).
-    KeepingHistories,
-    /// The residual and the tangent.
-    Tangent,
-}
-
 /// The water kinematics at each node at `t` into `ws.wave_kin` (nothing without waves, or without
 /// hydrodynamics to load the line with them): see [`water_kinematics`].
 fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWorkspace) {
@@ -722,16 +714,7 @@ fn attempt(
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
     wave_kinematics(dm, state, t1, ws);
     let (c_m, c_v, k_scale) = (sc.c_m, sc.c_v, sc.k_scale());
-    let mut last = (0, f64::INFINITY);
-    let mut first = f64::INFINITY;
-    // After a correction with a fresh factorisation Newton is quadratic and the next residual
-    // nearly always converges: evaluate it without the tangent, and assemble the tangent at that
-    // iterate only if it does not (half of all tangent assemblies were thrown away before; the
-    // answer is the same to the bit: the residual and the tangent do not depend on each other).
-    let mut after_fresh = false;
-    // Backtracking: a correction that raises the residual is halved (up to `MAX_BACKTRACKS` times)
-    // before the next one is computed (`lambda` is the fraction of `ws.dq` taken).
-    let (mut r_prev, mut lambda, mut backtracks) = (f64::INFINITY, 1.0, 0);
+    let mut nt = Newton::new(ws.factored_dt == Some(dt));
     for it in 0..set.max_iter {
         // Kinematics from the Newmark relations; prescribed dofs from the boundary conditions.
         relations(&sc, state, ws);
@@ -741,21 +724,11 @@ fn attempt(
             &state.u,
             (&mut ws.u, &mut ws.v, &mut ws.a),
         );
-        // The first iteration reuses the last factorised Jacobian (same Δt): one factorisation per
-        // step instead of two; later iterations are full Newton.
-        let reuse = it == 0 && ws.factored_dt == Some(dt);
-        let lazy = reuse || after_fresh;
-        // The residual after a fresh correction nearly always converges: its seabed trials'
-        // histories are kept for the commit.
-        let pass = match (lazy, after_fresh) {
-            (false, _) => Pass::Tangent,
-            (true, true) => Pass::KeepingHistories,
-            (true, false) => Pass::Forces,
-        };
+        let pass = nt.pass(it);
         forces_at_iterate(dm, &state.history, ws, pass, k_scale, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
         sc.residual(&ws.mass, &ws.a, &ws.f, &state.f_prev, &mut ws.g_all);
-        if !lazy {
+        if pass == Pass::Tangent {
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         let sq: f64 = ws
@@ -768,49 +741,46 @@ fn attempt(
             })
             .sum();
         let r = sq.sqrt() / refn;
-        if r.is_finite() && r > r_prev && backtracks < MAX_BACKTRACKS {
-            // u = u₀ − λ·dq → u₀ − (λ/2)·dq.
-            lambda *= 0.5;
-            for &(g0, e0, len) in &ws.free_runs {
-                for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
-                    *u += lambda * dq;
+        let accepted = match nt.judge(it, r, set.tol + noise) {
+            Verdict::Backtrack { back } => {
+                for &(g0, e0, len) in &ws.free_runs {
+                    for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
+                        *u += back * dq;
+                    }
                 }
+                continue;
             }
-            backtracks += 1;
-            continue;
-        }
+            Verdict::Accepted(a) => a,
+        };
         // The free equations of an accepted iterate (a halved correction's are not kept: on
         // failure the worst equation is looked up in the last accepted one's, [`worst_node`]).
         for &(g0, e0, len) in &ws.free_runs {
             ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
         }
-        r_prev = r;
-        lambda = 1.0;
-        backtracks = 0;
-        last = (it, r);
-        if it == 0 {
-            first = r;
-        }
-        // Diverging (the residual 10⁴ times its start): give up at once, retry or cut.
-        if !r.is_finite() || (it >= 2 && r > 1e4 * first) {
-            return Err(Failed {
-                last: worst_node(model, last, &ws.g),
-                diverged: true,
-            });
-        }
-        if r <= set.tol + noise {
-            commit(dm, state, ws, t1, dt);
-            return Ok(());
-        }
+        let (refresh_tangent, factor) = match accepted {
+            Accepted::Diverged => {
+                return Err(Failed {
+                    last: worst_node(model, nt.last(), &ws.g),
+                    diverged: true,
+                })
+            }
+            Accepted::Converged => {
+                commit(dm, state, ws, t1, dt);
+                return Ok(());
+            }
+            Accepted::Correct {
+                refresh_tangent,
+                factor,
+            } => (refresh_tangent, factor),
+        };
         *iterations += 1;
-        if after_fresh && !reuse {
+        if refresh_tangent {
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
             forces_at_iterate(dm, &state.history, ws, Pass::Tangent, k_scale, c_v, dt);
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
-        after_fresh = !reuse;
-        if !reuse {
+        if factor {
             if ws.asm.factor_tangent().is_err() {
                 // `advance` drops the factorisation of every failed attempt.
                 break;
@@ -825,7 +795,7 @@ fn attempt(
                 *u -= dq;
             }
         }
-        if r <= 1e-6 && step <= 1e-10 {
+        if Newton::stagnated(r, step) {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             relations(&sc, state, ws);
             forces_at_iterate(
@@ -842,30 +812,9 @@ fn attempt(
         }
     }
     Err(Failed {
-        last: worst_node(model, last, &ws.g),
+        last: worst_node(model, nt.last(), &ws.g),
         diverged: false,
     })
-}
-
-/// Halvings of one Newton correction that raised the residual, before it is taken as it is.
-pub const MAX_BACKTRACKS: u32 = 3;
-
-/// `(iteration, residual)` of the last accepted iterate and the node of the largest entry of its
-/// residual on the free equations, `g` (the first of equal ones).
-fn worst_node(model: &LineModel, (it, r): (usize, f64), g: &[f64]) -> (usize, f64, usize) {
-    let mut eq = 0;
-    let mut big = 0.0;
-    for (e, x) in g.iter().enumerate() {
-        if x.abs() > big {
-            (big, eq) = (x.abs(), e);
-        }
-    }
-    let node = model
-        .equation
-        .iter()
-        .position(|e| *e == Some(eq))
-        .map_or(0, |g| g / 3);
-    (it, r, node)
 }
 
 /// The lumped mass's part of the tangent, `c_m·M_i` at every node `i`.
@@ -876,59 +825,11 @@ fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f
     }
 }
 
-/// `max |x|` (0 for none; a NaN is passed over, as `f64::max` does), in eight partial maxima: the
-/// same value as one running maximum, without its chain of dependent comparisons.
-pub fn max_abs(xs: &[f64]) -> f64 {
-    let mut acc = [0.0f64; 8];
-    let chunks = xs.chunks_exact(8);
-    let rest = chunks.remainder();
-    for c in chunks {
-        for (a, x) in acc.iter_mut().zip(c) {
-            *a = a.max(x.abs());
-        }
-    }
-    rest.iter()
-        .fold(acc.iter().fold(0.0, |m, a| m.max(*a)), |m, x| {
-            m.max(x.abs())
-        })
-}
-
 /// A failed attempt: the last iterate's (iteration, relative residual, worst node), and whether
 /// Newton diverged (rather than failing to converge in `max_iter`).
 struct Failed {
     last: (usize, f64, usize),
     diverged: bool,
-}
-
-/// The rounding floor of the residual (N): `10·ε·√(Σₑ (EAₑ·(1 + U/L0ₑ))²)` with `U` the largest
-/// translational displacement from the base configuration. An element's axial force is EA times a
-/// strain computed from a chord `base + (uⱼ − uᵢ)` whose rounding is about `ε·U`, so the force is
-/// known to about `EA·ε·(1 + U/L0)`, and no iteration can bring the residual below that. The step
-/// converges when `‖G‖ ≤ tol·‖F_weight‖ + floor`. (Without the `U/L0` term the floor was too low
-/// for short elements far from the base: Watchet with 0.0625 m elements stalled at a relative
-/// residual of 1.05e-6 with the worst node wandering along the line.)
-pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
-    // The largest |x| and |z| in eight partial maxima, four nodes at a time (the same value as
-    // one running maximum, without its chain of dependent comparisons).
-    let mut acc = [0.0f64; 8];
-    let nodes = u.chunks_exact(12);
-    let rest = nodes.remainder();
-    for c in nodes {
-        for k in 0..4 {
-            acc[2 * k] = acc[2 * k].max(c[3 * k].abs());
-            acc[2 * k + 1] = acc[2 * k + 1].max(c[3 * k + 1].abs());
-        }
-    }
-    let big = rest
-        .chunks_exact(3)
-        .fold(max_abs(&acc), |m, c| m.max(c[0].abs()).max(c[1].abs()));
-    10.0 * f64::EPSILON
-        * model
-            .elements
-            .iter()
-            .map(|e| (e.section.ea * (1.0 + big / e.l0)).powi(2))
-            .sum::<f64>()
-            .sqrt()
 }
 
 /// `a_{n+1}` and `v_{n+1}` on the free dofs from the workspace's iterate (the Newmark relations,
@@ -1128,46 +1029,4 @@ pub fn results(dm: &DynamicModel, state: &DynState, ws: &DynWorkspace, out: &mut
         },
         out,
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Values of every size and sign, with NaNs, ±0 and a length that is not a multiple of eight.
-    fn values(n: usize) -> Vec<f64> {
-        (0..n)
-            .map(|i| match i % 37 {
-                5 => f64::NAN,
-                11 => -0.0,
-                _ => {
-                    ((i * 7919) % 1013) as f64
-                        * 10f64.powi((i % 13) as i32 - 6)
-                        * (-1f64).powi(i as i32)
-                }
-            })
-            .collect()
-    }
-
-    #[test]
-    fn the_partial_maxima_are_the_running_maximum() {
-        for n in [0, 1, 7, 8, 9, 100, 1203] {
-            let x = values(n);
-            let running = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            assert_eq!(max_abs(&x).to_bits(), running.to_bits(), "n = {n}");
-        }
-    }
-
-    #[test]
-    fn the_partial_sums_of_squares_are_the_running_sum_to_rounding() {
-        for n in [0, 1, 7, 8, 9, 100, 1203] {
-            let x: Vec<f64> = values(n).into_iter().filter(|v| !v.is_nan()).collect();
-            let running = x.iter().fold(0.0, |s, v| s + v * v);
-            let s = crate::fastmath::lane_dot(&x, &x);
-            assert!(
-                (s - running).abs() <= 1e-15 * running,
-                "n = {n}: {s} vs {running}"
-            );
-        }
-    }
 }

@@ -16,6 +16,7 @@
 //! - [`statics`]: the static Newton solve from a catenary seed;
 //! - [`integrator`]: the HHT-α/Newmark coefficients, predictors, relations and residual;
 //! - [`boundary`]: the prescribed dofs of the dynamics and what prescribes them;
+//! - [`newton`]: Newton's bookkeeping for a time step (lazy tangent, reuse, backtracking, tests);
 //! - [`dynamics`]: the time stepping (Newton in each step, step cutting) on a
 //!   [`dynamics::DynamicModel`];
 //! - [`analytical`]: closed-form solutions (catenaries, the touchdown boundary layer, the elastica),
@@ -32,6 +33,7 @@ pub mod integrator;
 pub mod loads;
 pub mod model;
 pub mod motion;
+pub mod newton;
 pub mod sparse;
 pub mod statics;
 pub mod vessel;
