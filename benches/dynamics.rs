@@ -161,5 +161,38 @@ fn waves(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, waves);
+/// What axial seabed friction costs a storm step: storm 23 (the fatigue mesh, 400 wave components)
+/// without and with `[seabed.friction]` (μ 0.5, δ 5 mm), 20 steps from the state at 120 s.
+fn friction(c: &mut Criterion) {
+    use catena::scene::riser::RiserScene;
+    use catena::scene::DirResolver;
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
+    let files = DirResolver::beside(&case);
+    let text = std::fs::read_to_string(&case).expect("case");
+    let with_friction = format!("{text}\n[seabed.friction]\naxial = 0.5\nmobilisation = 0.005\n");
+    let mut g = c.benchmark_group("friction");
+    g.sample_size(20);
+    for (name, text) in [("storm23", &text), ("storm23_friction", &with_friction)] {
+        let scene = RiserScene::parse("storm23", text, &files).expect("scene");
+        let st = catena::statics::solve(scene).expect("statics");
+        let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+        let mut ws = DynWorkspace::new(&dm.line).expect("ws");
+        let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
+        while state.t < 120.0 - 0.5 * spec.dt {
+            dynamics::advance(&dm, &mut state, &mut ws, spec.dt).expect("step");
+        }
+        g.bench_function(format!("{name}_20_steps"), |b| {
+            b.iter(|| {
+                let mut s = state.clone();
+                for _ in 0..20 {
+                    dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+                }
+                s
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, waves, friction);
 criterion_main!(benches);

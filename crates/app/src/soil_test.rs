@@ -115,6 +115,13 @@ impl SoilTestCase {
     pub fn parse(file: &str, text: &str) -> Result<Self, SceneError> {
         let raw: SoilTestFile = scene::parse(file, text)?;
         let seabed = raw.seabed.build(file, "seabed", None, None)?;
+        if raw.seabed.friction.is_some() {
+            return Err(invalid(
+                file,
+                "seabed.friction",
+                "no friction in a soil element test (it acts on a riser line's axial motion)",
+            ));
+        }
         let t = &raw.test;
         if t.waypoints.is_empty() {
             return Err(invalid(file, "test.waypoints", "at least one waypoint"));

@@ -407,12 +407,14 @@ fn repeated_runs_are_bit_identical_whatever_the_threads() {
 /// checkpoint interval of either: the uninterrupted run here writes no checkpoint at all, the
 /// interrupted one checkpoints every 37 steps and stops at step 111, and the restarted one
 /// checkpoints every 50. Its envelopes, gauges and top history cover the whole run and equal the
-/// uninterrupted run's; so does the final State.
+/// uninterrupted run's; so does the final State (with the seabed's friction anchors).
 #[test]
 fn restart_from_checkpoint_is_bit_for_bit() {
+    // With axial seabed friction too: its anchors are State and travel with the checkpoint.
     let text = rq_heave_text()
         .edit("duration = 100.0", "duration = 10.0")
-        .edit("envelope_start = 50.0", "envelope_start = 0.0");
+        .edit("envelope_start = 50.0", "envelope_start = 0.0")
+        + "\n[seabed.friction]\naxial = 0.5\nmobilisation = 0.005\n";
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("restart");
     std::fs::create_dir_all(&dir).expect("dir");
     let solve = |text: &str| {
@@ -475,6 +477,10 @@ fn restart_from_checkpoint_is_bit_for_bit() {
     assert_eq!(
         end_full.state, end_restarted.state,
         "final State bit for bit"
+    );
+    assert_eq!(
+        end_full.state.friction_anchor.len(),
+        full.model.line.nodes()
     );
     // A checkpoint of another scene is refused, naming what differs.
     let err = run_cmd::run(

@@ -317,3 +317,32 @@ fn suction_at_lift_off_in_a_storm_completes() {
     let r = run_case("hard/suction-liftoff", |t| t);
     assert!(r.cuts < 20, "{} cuts", r.cuts);
 }
+
+/// Axial friction in stick–slip (issue 28): the heave benchmark's riser on a seabed with friction
+/// μ = 0.5 and a mobilisation of only 1 mm, in a slow 5 m surge (`cases/hard/friction-stick-slip`).
+/// It completes, and friction does what it must: the seabed section carries the axial load
+/// variation, so the effective tension's range at the anchor falls to under half of the
+/// frictionless run's (a friction that never acts, or acts the wrong way, fails).
+#[test]
+fn friction_stick_slip_on_a_slow_surge() {
+    let with = run_case("hard/friction-stick-slip", |t| t);
+    let without = run_case("hard/friction-stick-slip", |t| {
+        t.edit(
+            "[seabed.friction]\naxial = 0.5 ",
+            "[seabed.friction]\naxial = 0.0 ",
+        )
+    });
+    let anchor_range = |r: &DynamicRun| {
+        let e = &r.envelopes.tension;
+        let n = e.max.len() - 1;
+        e.max[n] - e.min[n]
+    };
+    let (a, b) = (anchor_range(&with), anchor_range(&without));
+    println!(
+        "friction stick-slip: anchor tension range {:.2} kN with friction, {:.2} kN without; {} cuts",
+        a / 1e3,
+        b / 1e3,
+        with.cuts
+    );
+    assert!(a < 0.5 * b, "{a} vs {b}");
+}

@@ -14,6 +14,27 @@ fn root() -> PathBuf {
 /// `(name, case, text to replace, replacement, the key the message must name)`.
 const ROWS: &[(&str, &str, &str, &str, &str)] = &[
     (
+        "negative friction",
+        "hard/friction-stick-slip",
+        "axial = 0.5 ",
+        "axial = -0.5 ",
+        "seabed.friction.axial",
+    ),
+    (
+        "zero mobilisation",
+        "hard/friction-stick-slip",
+        "mobilisation = 0.001 ",
+        "mobilisation = 0.0 ",
+        "seabed.friction.mobilisation",
+    ),
+    (
+        "friction without its mobilisation",
+        "hard/friction-stick-slip",
+        "mobilisation = 0.001 ",
+        "# no mobilisation ",
+        "seabed.friction.mobilisation",
+    ),
+    (
         "heave nan",
         "benchmarks/scr-heave",
         "heave = 2.0",

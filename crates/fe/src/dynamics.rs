@@ -193,6 +193,10 @@ pub struct DynState {
     /// time grid ([`crate::wave_sampling`]); `None` otherwise.
     #[serde(default)]
     pub wave_grid: Option<KinematicsGrid>,
+    /// Each node's axial friction anchor, m (the x at which its friction spring is unstretched),
+    /// when the seabed has friction ([`crate::loads`]); empty otherwise.
+    #[serde(default)]
+    pub friction_anchor: Vec<f64>,
 }
 
 impl DynState {
@@ -235,6 +239,16 @@ impl DynState {
                     "state.history[{i}] is the history of another seabed law than the scene's"
                 ));
             }
+        }
+        let n_fric = friction_nodes(&dm.line);
+        if self.friction_anchor.len() != n_fric {
+            return Err(format!(
+                "state.friction_anchor has {} entries, expected {n_fric} (one per node with seabed friction, none without)",
+                self.friction_anchor.len()
+            ));
+        }
+        if let Some(i) = self.friction_anchor.iter().position(|x| !x.is_finite()) {
+            return Err(format!("state.friction_anchor[{i}] is not a finite number"));
         }
         if !(self.t.is_finite() && self.t >= 0.0) {
             return Err(format!("state.t = {} is not a time >= 0 s", self.t));
@@ -433,6 +447,7 @@ impl DynWorkspace {
                 f_prev: vec![0.0; 3 * n],
                 history: vec![untouched; n],
                 wave_grid: None,
+                friction_anchor: vec![0.0; friction_nodes(line)],
             },
             factored_dt: None,
             wave_kin: vec![None; n],
@@ -477,6 +492,14 @@ impl DynWorkspace {
     }
 }
 
+/// The nodes that carry a friction anchor: every node when the seabed has friction, none otherwise.
+fn friction_nodes(line: &LineModel) -> usize {
+    match line.seabed.as_ref().and_then(|s| s.friction) {
+        Some(_) => line.nodes(),
+        None => 0,
+    }
+}
+
 /// The dynamic State at the end of the statics: at rest, each node in contact starting in Initial
 /// Penetration at its static penetration (the spec's decision). The initial acceleration is the
 /// lumped `a0 = −M⁻¹F(u, 0)` on the free dofs (zero from a static equilibrium).
@@ -503,10 +526,15 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
         f_prev: vec![0.0; 3 * n],
         history,
         wave_grid: None,
+        // Friction acts from the start of the dynamics, each spring unstretched where the statics
+        // left its node (the statics are frictionless).
+        friction_anchor: (0..friction_nodes(model))
+            .map(|i| pl.base[3 * i] + u[3 * i])
+            .collect(),
     };
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
-    forces_at_iterate(dm, &state.history, ws, Pass::Forces, 0.0, 0.0, 0.0);
+    forces_at_iterate(dm, &state, ws, Pass::Forces, 0.0, 0.0, 0.0);
     state.f_prev.copy_from_slice(&ws.f);
     lump_mass(dm, &state.u, ws);
     for i in 0..n {
@@ -535,7 +563,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
 /// `(1+α)(K + c_v·C)` into the tangent (`k_scale = 1 + α`). `dt` is the step the seabed laws see.
 fn forces_at_iterate(
     dm: &DynamicModel,
-    committed: &[SeabedHistory],
+    committed: &DynState,
     ws: &mut DynWorkspace,
     pass: Pass,
     k_scale: f64,
@@ -551,7 +579,8 @@ fn forces_at_iterate(
         asm.scale_tangent(k_scale);
     }
     let seabed = SeabedPass::Trial {
-        committed,
+        committed: &committed.history,
+        anchors: &committed.friction_anchor,
         dt,
         memo: &mut ws.trial_memo,
         keep: keep.then_some(&mut ws.trial_history[..]),
@@ -725,7 +754,7 @@ fn attempt(
             (&mut ws.u, &mut ws.v, &mut ws.a),
         );
         let pass = nt.pass(it);
-        forces_at_iterate(dm, &state.history, ws, pass, k_scale, c_v, dt);
+        forces_at_iterate(dm, state, ws, pass, k_scale, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
         sc.residual(&ws.mass, &ws.a, &ws.f, &state.f_prev, &mut ws.g_all);
         if pass == Pass::Tangent {
@@ -777,7 +806,7 @@ fn attempt(
         if refresh_tangent {
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
-            forces_at_iterate(dm, &state.history, ws, Pass::Tangent, k_scale, c_v, dt);
+            forces_at_iterate(dm, state, ws, Pass::Tangent, k_scale, c_v, dt);
             add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
         }
         if factor {
@@ -798,15 +827,7 @@ fn attempt(
         if Newton::stagnated(r, step) {
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             relations(&sc, state, ws);
-            forces_at_iterate(
-                dm,
-                &state.history,
-                ws,
-                Pass::KeepingHistories,
-                k_scale,
-                c_v,
-                dt,
-            );
+            forces_at_iterate(dm, state, ws, Pass::KeepingHistories, k_scale, c_v, dt);
             commit(dm, state, ws, t1, dt);
             return Ok(());
         }
@@ -874,6 +895,15 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
     std::mem::swap(&mut state.v, &mut ws.v);
     std::mem::swap(&mut state.a, &mut ws.a);
     std::mem::swap(&mut state.f_prev, &mut ws.f);
+    if let Some(f) = model.seabed.as_ref().and_then(|s| s.friction) {
+        loads::commit_friction(
+            &f,
+            pl,
+            &state.u,
+            &ws.loads.seabed_force,
+            &mut state.friction_anchor,
+        );
+    }
     if ws.grid_new {
         match &mut state.wave_grid {
             Some(g) => std::mem::swap(g, &mut ws.grid_trial),
@@ -894,6 +924,7 @@ fn copy_state(to: &mut DynState, from: &DynState) {
     to.a.copy_from_slice(&from.a);
     to.f_prev.copy_from_slice(&from.f_prev);
     to.history.copy_from_slice(&from.history);
+    to.friction_anchor.copy_from_slice(&from.friction_anchor);
     match (&mut to.wave_grid, &from.wave_grid) {
         (Some(a), Some(b)) if a.samples[0].len() == b.samples[0].len() => {
             a.index = b.index;
@@ -1004,7 +1035,7 @@ pub fn advance(
 pub fn refresh(dm: &DynamicModel, state: &DynState, ws: &mut DynWorkspace) {
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
-    forces_at_iterate(dm, &state.history, ws, Pass::Forces, 0.0, 0.0, 0.0);
+    forces_at_iterate(dm, state, ws, Pass::Forces, 0.0, 0.0, 0.0);
     lump_mass(dm, &state.u, ws);
 }
 

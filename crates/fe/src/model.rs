@@ -66,6 +66,20 @@ pub struct SeabedContact {
     pub seabed: Seabed,
     /// Height of the mudline, m (0 in catena's cases).
     pub mudline_z: f64,
+    /// Axial friction along the mudline, if the scene has it (dynamics only).
+    pub friction: Option<AxialFriction>,
+}
+
+/// Axial seabed friction, elastic–slip (Coulomb): at a node pressed on the seabed by `N` (its
+/// seabed force over its tributary length, N), a spring of stiffness `μN/δ` from the node's
+/// anchor position up to `±μN`, beyond which the pipe slides and the anchor follows it
+/// ([`crate::loads`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxialFriction {
+    /// The Coulomb coefficient μ on the normal seabed force.
+    pub mu: f64,
+    /// The axial displacement that mobilises full friction δ, m.
+    pub mobilisation: f64,
 }
 
 /// A rotational spring at a node (a flexjoint).

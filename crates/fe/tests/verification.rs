@@ -39,6 +39,7 @@ fn scr(seabed: Seabed, ea: f64, ei: f64, tdz_element: f64) -> LineModel {
         seabed: Some(SeabedContact {
             seabed,
             mudline_z: 0.0,
+            friction: None,
         }),
         flexjoint: None,
     })

@@ -209,6 +209,7 @@ pub(super) fn line_model(
         Some(t) => Some(SeabedContact {
             seabed: t.build(file, "seabed", Some(l.od), Some(env.water_density))?,
             mudline_z: 0.0,
+            friction: t.friction(file, "seabed")?,
         }),
         None => None,
     };

@@ -15,6 +15,7 @@
 //! | `lambda_rep` | — | required (R–Q) | repenetration offset |
 //! | `liftoff_smoothing` | — | false (R–Q) | cap uplift `P` by `P_IP` |
 //! | `f_b`, `soil_density`, `water_density` | —, kg/m³, kg/m³ | none | soil buoyancy (eq. 15): all three or none |
+//! | `[seabed.friction]` `axial`, `mobilisation` | —, m | none | axial friction (riser scenes, dynamics only): Coulomb μ on the normal seabed force, and the displacement δ > 0 that mobilises it |
 
 use catena_seabed::law::{Law, Seabed};
 use catena_seabed::{LinearSeabed, ParamError, RandolphQuiggin, RqParams, SoilBuoyancy};
@@ -54,6 +55,16 @@ pub struct SeabedTable {
     pub f_b: Option<f64>,
     pub soil_density: Option<f64>,
     pub water_density: Option<f64>,
+    pub friction: Option<FrictionTable>,
+}
+
+/// `[seabed.friction]` as written.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct FrictionTable {
+    pub axial: Option<f64>,
+    pub mobilisation: Option<f64>,
 }
 
 fn param_error(file: &str, table: &str, e: ParamError) -> SceneError {
@@ -65,6 +76,48 @@ fn param_error(file: &str, table: &str, e: ParamError) -> SceneError {
 }
 
 impl SeabedTable {
+    /// `[seabed.friction]`, checked: `axial` = μ ≥ 0 and `mobilisation` = δ > 0 (m), both required.
+    pub fn friction(
+        &self,
+        file: &str,
+        table: &str,
+    ) -> Result<Option<catena_fe::model::AxialFriction>, SceneError> {
+        let Some(f) = &self.friction else {
+            return Ok(None);
+        };
+        let key = |k: &str| format!("{table}.friction.{k}");
+        let mu = required(
+            file,
+            &key("axial"),
+            f.axial,
+            "the axial friction coefficient μ >= 0",
+        )?;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(invalid(
+                file,
+                key("axial"),
+                format!("a friction coefficient μ >= 0 (got {mu})"),
+            ));
+        }
+        let delta = required(
+            file,
+            &key("mobilisation"),
+            f.mobilisation,
+            "the displacement that mobilises full friction, in m (> 0)",
+        )?;
+        if !(delta.is_finite() && delta > 0.0) {
+            return Err(invalid(
+                file,
+                key("mobilisation"),
+                format!("a mobilisation displacement > 0 m (got {delta})"),
+            ));
+        }
+        Ok(Some(catena_fe::model::AxialFriction {
+            mu,
+            mobilisation: delta,
+        }))
+    }
+
     /// Builds the seabed. `table` is the table's name in the file (for messages); `default_diameter`
     /// and `default_water_density` fill keys a riser scene knows from elsewhere.
     pub fn build(
