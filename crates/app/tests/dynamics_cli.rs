@@ -631,3 +631,40 @@ fn long_runs_record_at_a_bounded_default_interval() {
     assert_ne!(explicit, long);
     assert_eq!(parse(&explicit).output_every, 1);
 }
+
+/// `[[attachment]]` through a scene: a 5 kN buoyancy module on the heave benchmark's riser at
+/// 601 m is carried by the nearest node (arc 600 m), its lift enters that node's dead load, it
+/// lightens the line (the static top tension falls: 1221.6 → 1216.0 kN), and the run completes.
+#[test]
+fn an_attached_buoyancy_module_lightens_the_riser() {
+    let base = heave_text()
+        .edit("duration = 100.0", "duration = 5.0")
+        .edit("envelope_start = 50.0", "envelope_start = 0.0");
+    let with = base.edit(
+        "[dynamic]",
+        "[[attachment]]\nname = \"module\"\narc = 601.0\nmass = 800.0\nsubmerged_weight = -5000.0\ndrag_area = 1.2\nadded_mass = 600.0\n\n[dynamic]",
+    );
+    let a = run_text("attachment-none", &base);
+    let b = run_text("attachment-module", &with);
+    let att = &b.model.line.attachments;
+    assert_eq!(att.len(), 1);
+    assert!(
+        (b.model.line.arc[att[0].node] - 600.0).abs() < 1e-9,
+        "{}",
+        att[0].node
+    );
+    let (ta, tb) = (a.statics.summary.top_tension, b.statics.summary.top_tension);
+    println!(
+        "top tension {:.1} kN without, {:.1} kN with a 5 kN module",
+        ta / 1e3,
+        tb / 1e3
+    );
+    assert!(tb < ta, "{ta} {tb}");
+    // Its lift is in the node's dead load (the weight as a downward force: −W = +5 kN here).
+    let (n, lines) = (att[0].node, (&a.model.line, &b.model.line));
+    assert_eq!(
+        lines.1.dead_load[3 * n + 1] - lines.0.dead_load[3 * n + 1],
+        5000.0
+    );
+    assert!(b.completed());
+}

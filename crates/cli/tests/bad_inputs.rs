@@ -14,6 +14,27 @@ fn root() -> PathBuf {
 /// `(name, case, text to replace, replacement, the key the message must name)`.
 const ROWS: &[(&str, &str, &str, &str, &str)] = &[
     (
+        "attachment beyond the line",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[[attachment]]\narc = 2000.0\nmass = 1.0\n\n[dynamic]",
+        "attachment[0].arc",
+    ),
+    (
+        "attachment with a negative mass",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[[attachment]]\narc = 600.0\nmass = -1.0\n\n[dynamic]",
+        "attachment[0].mass",
+    ),
+    (
+        "attachment drag without hydrodynamics",
+        "scr1000/static-rq",
+        "[flexjoint]",
+        "[[attachment]]\narc = 600.0\ndrag_area = 1.0\n\n[flexjoint]",
+        "attachment[0].drag_area",
+    ),
+    (
         "negative friction",
         "hard/friction-stick-slip",
         "axial = 0.5 ",

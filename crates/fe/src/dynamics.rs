@@ -687,7 +687,8 @@ fn water_kinematics<W: WaveKinematics>(
 }
 
 /// The line's own lumped mass per node `[xx, xz, zz, rot]`: half of each element's mass at each
-/// of its nodes, and the rotary inertia of a thin ring, `m·D²/8` per length.
+/// of its nodes, and the rotary inertia of a thin ring, `m·D²/8` per length; attached bodies'
+/// masses at their nodes.
 fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
     let mut mass = vec![[0.0; 4]; model.nodes()];
     for (e, el) in model.elements.iter().enumerate() {
@@ -698,11 +699,16 @@ fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
             mass[i][3] += half * el.od * el.od / 8.0;
         }
     }
+    // Attached bodies: their mass at their node, in x and z (a point mass: no rotary inertia).
+    for a in &model.attachments {
+        mass[a.node][0] += a.mass;
+        mass[a.node][2] += a.mass;
+    }
     mass
 }
 
 /// Lumped mass at the orientation `u`: the line's own ([`structural_mass`]) and the added mass
-/// normal to the tangent there.
+/// normal to the tangent there; attached bodies' added mass in both directions.
 fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
     let (model, pl) = (&dm.line, &dm.placement);
     ws.mass.copy_from_slice(&ws.structural_mass);
@@ -715,6 +721,11 @@ fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
             m[0] += ma * (1.0 - tx * tx);
             m[1] += -ma * tx * ty;
             m[2] += ma * (1.0 - ty * ty);
+        }
+        // Attached bodies' added mass: isotropic (a compact body).
+        for a in &model.attachments {
+            ws.mass[a.node][0] += a.added_mass;
+            ws.mass[a.node][2] += a.added_mass;
         }
     }
 }

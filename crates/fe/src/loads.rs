@@ -32,6 +32,10 @@
 //!    `ρA(1 + Ca)·a_n + ρA·a_t` ([`crate::environment::Hydro::wave_inertia`]). In the statics only
 //!    a steady current acts, on the line at rest.
 //!
+//! 5. **Attached bodies' drag** (with hydrodynamics): isotropic, `½ρ·CdA·|u|·u` on the water's
+//!    velocity relative to the node (current and waves); their weight is a dead load and their
+//!    mass and added mass are lumped at their node (`crate::dynamics`).
+//!
 //! **A new load** is a function here, called from [`assemble`] when its `Option` in [`LoadModel`]
 //! is `Some` (an effect absent from the scene is not built and costs nothing), with its
 //! finite-difference tangent test and a mutation in `scripts/mutations.toml`.
@@ -171,6 +175,47 @@ pub fn assemble(
     }
     if let Some(h) = m.hydro {
         add_hydrodynamics(h, m, at, scale, asm, &mut scratch.node_tangent);
+        if !m.line.attachments.is_empty() {
+            add_attachment_drag(h, m, at, scale, asm);
+        }
+    }
+}
+
+/// The drag on attached bodies (isotropic): `f = ½ρ·CdA·|u|·u` on the water's velocity relative to
+/// the node, `u = (U(z) + w_x − v_x, w_z − v_z)`; its damping block `½ρ·CdA·(|u|·I + u uᵀ/|u|)`.
+#[inline(never)]
+fn add_attachment_drag(
+    h: &Hydro,
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    scale: TangentScale,
+    asm: &mut Assembler,
+) {
+    let (model, pl) = (m.line, m.placement);
+    let with_c = scale.with_k && scale.c_v != 0.0;
+    for a in model.attachments.iter().filter(|a| a.drag_area > 0.0) {
+        let i = a.node;
+        let z = pl.base[3 * i + 1] + at.u[3 * i + 1];
+        let w = at
+            .wave_kin
+            .get(i)
+            .copied()
+            .flatten()
+            .map_or([0.0; 2], |k| k.velocity);
+        let (ux, uz) = (h.current_at(z) + w[0] - at.v[3 * i], w[1] - at.v[3 * i + 1]);
+        let c = 0.5 * h.water_density * a.drag_area;
+        let speed = (ux * ux + uz * uz).sqrt();
+        asm.residual[3 * i] -= c * speed * ux;
+        asm.residual[3 * i + 1] -= c * speed * uz;
+        if with_c && speed > 0.0 {
+            let f = scale.k * scale.c_v * c;
+            let (cxx, cxz, czz) = (
+                speed + ux * ux / speed,
+                ux * uz / speed,
+                speed + uz * uz / speed,
+            );
+            asm.add_node_block(i, f * cxx, f * cxz, f * czz);
+        }
     }
 }
 
@@ -737,5 +782,123 @@ mod tests {
         println!("friction: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
         assert!(kd.iter().any(|x| *x != 0.0));
+    }
+
+    /// The attached bodies' drag damping against central differences in the velocities (bodies
+    /// with and without drag area, in a current), to 1e-6 of the largest entry; and still water at
+    /// rest adds nothing.
+    #[test]
+    fn attachment_drag_tangent_matches_finite_differences() {
+        use crate::model::Attachment;
+        let linear = Law::Linear(LinearSeabed::new(0.3, 2e5, 0.0).expect("linear"));
+        let (model, pl) = line(linear);
+        let body = |drag_area: f64| Attachment {
+            node: 0,
+            mass: 50.0,
+            weight: -200.0,
+            drag_area,
+            added_mass: 30.0,
+        };
+        let model = model.with_attachments(&[(2.0, body(0.8)), (5.2, body(0.0)), (9.0, body(1.5))]);
+        let h_sea = hydro();
+        let committed: Vec<SeabedHistory> = (0..N)
+            .map(|_| model.seabed.as_ref().expect("sb").seabed.untouched())
+            .collect();
+        let u = vec![0.0; 3 * N];
+        let v: Vec<f64> = (0..3 * N)
+            .map(|g| 0.4 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
+            .collect();
+        let run = |v: &[f64], c_v: f64, hydro: &Hydro| {
+            let mut asm = Assembler::new(&model).expect("assembler");
+            let mut scratch = LoadScratch::new(N);
+            asm.residual.fill(0.0);
+            asm.k.clear();
+            let m = LoadModel {
+                line: &model,
+                placement: &pl,
+                hydro: Some(hydro),
+                structural_damping: None,
+            };
+            let pass = SeabedPass::Trial {
+                committed: &committed,
+                anchors: &[],
+                dt: 0.1,
+                memo: &mut [],
+                keep: None,
+            };
+            let at = Iterate {
+                u: &u,
+                v,
+                wave_kin: &[],
+            };
+            let scale = TangentScale {
+                with_k: true,
+                k: 1.0,
+                c_v,
+            };
+            assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
+            asm
+        };
+        let (d, dg) = direction(&model, 1.0);
+        let (a1, a0) = (run(&v, 1.0, &h_sea), run(&v, 0.0, &h_sea));
+        let (mut k1, mut k0) = (vec![0.0; model.n_eq], vec![0.0; model.n_eq]);
+        a1.k.mul(&d, &mut k1);
+        a0.k.mul(&d, &mut k0);
+        let cd: Vec<f64> = k1.iter().zip(&k0).map(|(a, b)| a - b).collect();
+        let h = 1e-7;
+        let residual = |sgn: f64| {
+            let vs: Vec<f64> = v.iter().zip(&dg).map(|(v, x)| v + sgn * h * x).collect();
+            let a = run(&vs, 0.0, &h_sea);
+            let mut r = vec![0.0; model.n_eq];
+            a.gather(&model, &mut r);
+            r
+        };
+        let (rp, rm) = (residual(1.0), residual(-1.0));
+        let fd: Vec<f64> = rp
+            .iter()
+            .zip(&rm)
+            .map(|(p, m)| (p - m) / (2.0 * h))
+            .collect();
+        let w = worst(&cd, &fd);
+        println!("attachment drag: worst difference {w:.2e} of the largest entry");
+        assert!(w < 1e-6, "{w}");
+        // Still water, at rest: no force from the bodies.
+        let still = Hydro {
+            current: vec![],
+            ..hydro()
+        };
+        let zero = vec![0.0; 3 * N];
+        let a = run(&zero, 0.0, &still);
+        let plain = {
+            let m2 = LoadModel {
+                line: &model,
+                placement: &pl,
+                hydro: None,
+                structural_damping: None,
+            };
+            let mut asm = Assembler::new(&model).expect("assembler");
+            let mut scratch = LoadScratch::new(N);
+            asm.residual.fill(0.0);
+            let pass = SeabedPass::Trial {
+                committed: &committed,
+                anchors: &[],
+                dt: 0.1,
+                memo: &mut [],
+                keep: None,
+            };
+            let at = Iterate {
+                u: &u,
+                v: &zero,
+                wave_kin: &[],
+            };
+            let scale = TangentScale {
+                with_k: false,
+                k: 1.0,
+                c_v: 0.0,
+            };
+            assemble(&m2, &at, pass, scale, &mut asm, &mut scratch);
+            asm.residual
+        };
+        assert_eq!(a.residual, plain);
     }
 }

@@ -93,6 +93,23 @@ pub struct FlexJoint {
     pub neutral: f64,
 }
 
+/// A body attached at a node (a clump weight, a discrete buoyancy module): its mass, its submerged
+/// weight (negative: buoyant), and, in water, its drag area and added mass (both isotropic: a
+/// compact body, unlike the pipe's normal-only drag and added mass).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attachment {
+    /// The node that carries it (the nearest to the arc length given).
+    pub node: usize,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Submerged weight, N (negative: net buoyant).
+    pub weight: f64,
+    /// Drag area `Cd·A`, m² (drag `½ρ·CdA·|u|u` on the velocity `u` relative to the water).
+    pub drag_area: f64,
+    /// Added mass, kg.
+    pub added_mass: f64,
+}
+
 /// What is needed to build a line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LineSpec {
@@ -148,6 +165,8 @@ pub struct LineModel {
     pub flexjoint: Option<FlexJoint>,
     /// The supports (top, anchor).
     pub supports: (Support, Support),
+    /// Bodies attached at nodes ([`LineModel::with_attachments`]).
+    pub attachments: Vec<Attachment>,
 }
 
 impl LineModel {
@@ -233,7 +252,32 @@ impl LineModel {
                 neutral,
             }),
             supports: (spec.top, spec.anchor),
+            attachments: Vec::new(),
         })
+    }
+
+    /// The Model with bodies attached: each `(arc, attachment)` at the node nearest to its arc
+    /// length from the top (m; the first of two equally near), its submerged weight added to the
+    /// node's dead load. Its mass (and, in water, its added mass and drag) enter the dynamics.
+    pub fn with_attachments(mut self, bodies: &[(f64, Attachment)]) -> Self {
+        for (arc, a) in bodies {
+            let node = self
+                .arc
+                .iter()
+                .enumerate()
+                .fold((0, f64::INFINITY), |(best, d), (i, s)| {
+                    let di = (s - arc).abs();
+                    if di < d {
+                        (i, di)
+                    } else {
+                        (best, d)
+                    }
+                })
+                .0;
+            self.dead_load[3 * node + 1] -= a.weight;
+            self.attachments.push(Attachment { node, ..*a });
+        }
+        self
     }
 
     /// Number of nodes.

@@ -4,7 +4,7 @@
 //! ([`Ends::positions`]).
 
 use catena_fe::beam::Section;
-use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
+use catena_fe::model::{Attachment, LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::statics::EndPositions;
 
 use super::checks::positive;
@@ -236,7 +236,68 @@ pub(super) fn line_model(
         seabed,
         flexjoint,
     };
-    LineModel::build(&spec).map_err(|e| invalid(file, "mesh", e.to_string()))
+    let model = LineModel::build(&spec).map_err(|e| invalid(file, "mesh", e.to_string()))?;
+    Ok(model.with_attachments(&attachments(file, raw)?))
+}
+
+/// `[[attachment]]`, checked: an arc length on the line, a mass ≥ 0 kg, a finite submerged weight
+/// (N, negative: buoyant), a drag area ≥ 0 m² and an added mass ≥ 0 kg (these two only with
+/// `[hydrodynamics]`). Each is carried by the node nearest to its arc length.
+fn attachments(file: &str, raw: &RiserFile) -> Result<Vec<(f64, Attachment)>, SceneError> {
+    let length = raw.line.length;
+    let mut out = Vec::new();
+    for (i, a) in raw.attachment.iter().enumerate() {
+        let key = |k: &str| format!("attachment[{i}].{k}");
+        if !(0.0..=length).contains(&a.arc) {
+            return Err(invalid(
+                file,
+                key("arc"),
+                format!(
+                    "an arc length from the top within [0, {length}] m (got {})",
+                    a.arc
+                ),
+            ));
+        }
+        for (k, v, what) in [
+            ("mass", a.mass, "a mass >= 0 kg"),
+            ("drag_area", a.drag_area, "a drag area Cd·A >= 0 m²"),
+            ("added_mass", a.added_mass, "an added mass >= 0 kg"),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(invalid(file, key(k), format!("{what} (got {v})")));
+            }
+        }
+        if !a.submerged_weight.is_finite() {
+            return Err(invalid(
+                file,
+                key("submerged_weight"),
+                "a finite submerged weight in N (negative: buoyant)",
+            ));
+        }
+        if raw.hydrodynamics.is_none() && (a.drag_area > 0.0 || a.added_mass > 0.0) {
+            let k = if a.drag_area > 0.0 {
+                "drag_area"
+            } else {
+                "added_mass"
+            };
+            return Err(invalid(
+                file,
+                key(k),
+                "a [hydrodynamics] table as well (the water's density and the drag act through it)",
+            ));
+        }
+        out.push((
+            a.arc,
+            Attachment {
+                node: 0,
+                mass: a.mass,
+                weight: a.submerged_weight,
+                drag_area: a.drag_area,
+                added_mass: a.added_mass,
+            },
+        ));
+    }
+    Ok(out)
 }
 
 /// `[ends]`, checked: finite coordinates, the top above the mudline, within the water and on the

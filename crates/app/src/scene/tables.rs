@@ -326,6 +326,23 @@ pub struct VesselTable {
     pub hangoff_offset: [f64; 2],
 }
 
+/// `[[attachment]]`: a body at an arc length (a clump weight, a buoyancy module).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct AttachmentTable {
+    pub name: Option<String>,
+    pub arc: f64,
+    #[serde(default)]
+    pub mass: f64,
+    #[serde(default)]
+    pub submerged_weight: f64,
+    #[serde(default)]
+    pub drag_area: f64,
+    #[serde(default)]
+    pub added_mass: f64,
+}
+
 /// `[[gauge]]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -360,6 +377,8 @@ pub struct RiserFile {
     pub fatigue: Option<FatigueTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
+    #[serde(default)]
+    pub attachment: Vec<AttachmentTable>,
     pub limits: Option<LimitsTable>,
 }
 
