@@ -115,6 +115,13 @@ impl SoilTestCase {
     pub fn parse(file: &str, text: &str) -> Result<Self, SceneError> {
         let raw: SoilTestFile = scene::parse(file, text)?;
         let seabed = raw.seabed.build(file, "seabed", None, None)?;
+        if !raw.seabed.zone.is_empty() {
+            return Err(invalid(
+                file,
+                "seabed.zone",
+                "no zones in a soil element test (they vary the soil along a riser's route)",
+            ));
+        }
         if raw.seabed.friction.is_some() {
             return Err(invalid(
                 file,

@@ -65,9 +65,11 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
     let given_neutral = scene
         .flexjoint_neutral_from_vertical
         .map(|phi| -std::f64::consts::FRAC_PI_2 - phi);
+    // Each node's soil: the zone under it in the base configuration (nothing without zones).
     let mut model = scene
         .model
         .clone()
+        .zoned_at(&q)
         .with_flexjoint_neutral(given_neutral.unwrap_or(q[2]));
     let placement = Placement::new(&q);
     let mut u = vec![0.0; q.len()];
@@ -93,9 +95,8 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
         report.assembly_seconds += again.assembly_seconds;
         report.solve_seconds += again.solve_seconds;
     }
-    let seabed = model.seabed;
-    let results = statics::line_results(&model, &placement, &u, &mut ws, |_, p| {
-        seabed.map_or(0.0, |s| s.seabed.backbone(p).total())
+    let results = statics::line_results(&model, &placement, &u, &mut ws, |i, p| {
+        model.seabed_law(i).map_or(0.0, |s| s.backbone(p).total())
     });
     let zeros = vec![0.0; u.len()];
     if let Some((field, node)) = catena_fe::assembly::first_non_finite(&results, &u, &zeros, &zeros)

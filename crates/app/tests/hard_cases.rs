@@ -346,3 +346,40 @@ fn friction_stick_slip_on_a_slow_surge() {
     );
     assert!(a < 0.5 * b, "{a} vs {b}");
 }
+
+/// A touchdown crossing a soil zone boundary (issue 28): the heave benchmark's riser with a soft
+/// zone (20 kN/m/m² against 100) under its resting part, up to x = 400 m, about where its touchdown
+/// point rests, in a 2 m heave (`cases/hard/zone-boundary`). It completes; the resting pipe sinks
+/// to the soft soil's embedment `w/(kD)` = 0.221 m (the default's would be 0.044 m), to 2 %; and
+/// the touchdown point moves across the boundary (its range of arc lengths spans the arc where
+/// x = 400 m).
+#[test]
+fn touchdown_crossing_a_zone_boundary() {
+    let r = run_case("hard/zone-boundary", |t| t);
+    let st = &r.statics;
+    let (x, pen) = (&st.results.x, &st.results.penetration);
+    let at = |x0: f64| {
+        let i = x.iter().position(|x| (x - x0).abs() < 2.5).expect("node");
+        pen[i]
+    };
+    let (w, d) = (1010.0, 0.2286);
+    let (a, b) = (at(100.0), at(300.0));
+    println!(
+        "zone boundary: static penetration {a:.4} m at x 100 m, {b:.4} m at 300 m (soft zone; w/kD {:.4} m); touchdown arc {:?}; {} cuts",
+        w / (2e4 * d),
+        r.envelopes.touchdown,
+        r.cuts
+    );
+    for p in [a, b] {
+        assert!((p / (w / (2e4 * d)) - 1.0).abs() < 0.02, "{p}");
+    }
+    let boundary_arc = {
+        let i = x.iter().position(|x| *x < 400.0).expect("node");
+        r.model.line.arc[i]
+    };
+    let (lo, hi) = r.envelopes.touchdown;
+    assert!(
+        lo < boundary_arc && boundary_arc < hi,
+        "{lo} {hi} {boundary_arc}"
+    );
+}

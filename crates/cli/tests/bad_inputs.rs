@@ -14,6 +14,27 @@ fn root() -> PathBuf {
 /// `(name, case, text to replace, replacement, the key the message must name)`.
 const ROWS: &[(&str, &str, &str, &str, &str)] = &[
     (
+        "zone ending before it starts",
+        "hard/zone-boundary",
+        "to_x = 400.0 ",
+        "to_x = -200.0 ",
+        "seabed.zone[0].to_x",
+    ),
+    (
+        "zones overlapping",
+        "hard/zone-boundary",
+        "[hydrodynamics]",
+        "[[seabed.zone]]\nfrom_x = 300.0\nto_x = 500.0\nstiffness = 50e3\n\n[hydrodynamics]",
+        "seabed.zone[1].from_x",
+    ),
+    (
+        "zone with a key of another law",
+        "hard/zone-boundary",
+        "stiffness = 20.0e3 ",
+        "su0 = 100.0 ",
+        "seabed.zone[0].su0",
+    ),
+    (
         "attachment beyond the line",
         "benchmarks/scr-heave",
         "[dynamic]",

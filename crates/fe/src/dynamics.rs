@@ -510,7 +510,10 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
     let history: Vec<SeabedHistory> = (0..n)
         .map(
             |i| match (model.seabed.as_ref(), penetration(model, pl, u, &v, i)) {
-                (Some(sb), Some((z, _))) => sb.seabed.start_of_dynamics(z),
+                (Some(sb), Some((z, _))) => model
+                    .seabed_law(i)
+                    .unwrap_or(&sb.seabed)
+                    .start_of_dynamics(z),
                 (Some(sb), None) => sb.seabed.untouched(),
                 _ => SeabedHistory::Linear(Default::default()),
             },
@@ -888,8 +891,9 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
         let mut spare = TrialMemo::default();
         for (i, h) in state.history.iter_mut().enumerate() {
             let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
-            *h = sb
-                .seabed
+            *h = model
+                .seabed_law(i)
+                .unwrap_or(&sb.seabed)
                 .evaluate_with(
                     h,
                     z,

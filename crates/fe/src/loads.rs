@@ -241,7 +241,8 @@ fn add_seabed(
                     seabed_force[i] = 0.0;
                     continue;
                 }
-                let t = sb.seabed.backbone(z_pen);
+                let law = model.node_seabed.get(i).unwrap_or(&sb.seabed);
+                let t = law.backbone(z_pen);
                 let l = model.tributary[i];
                 seabed_force[i] = t.total();
                 asm.residual[3 * i + 1] -= l * t.total();
@@ -265,15 +266,13 @@ fn add_seabed(
                 // the force alone. Only a law that keeps something has memos (the linear law's
                 // trials take `spare`).
                 let memo = memo.get_mut(i).unwrap_or(&mut spare);
+                // The node's zone's law, or the default (no zones: always the default).
+                let law = model.node_seabed.get(i).unwrap_or(&sb.seabed);
                 let t = match keep.as_deref_mut() {
-                    Some(next) => sb.seabed.response_and_next(
-                        &committed[i],
-                        z,
-                        zdot,
-                        dt,
-                        (memo, &mut next[i]),
-                    ),
-                    None => sb.seabed.response(&committed[i], z, zdot, dt, memo),
+                    Some(next) => {
+                        law.response_and_next(&committed[i], z, zdot, dt, (memo, &mut next[i]))
+                    }
+                    None => law.response(&committed[i], z, zdot, dt, memo),
                 };
                 let l = model.tributary[i];
                 let up = t.total;

@@ -93,6 +93,18 @@ pub struct FlexJoint {
     pub neutral: f64,
 }
 
+/// A stretch of seabed whose soil differs from the `[seabed]` default: the law that holds for
+/// nodes whose x (in the static analysis' base configuration) lies in `[from_x, to_x)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeabedZone {
+    /// Where it starts, m (horizontal position).
+    pub from_x: f64,
+    /// Where it ends, m.
+    pub to_x: f64,
+    /// Its law (the same kind as the default's, other parameters).
+    pub seabed: Seabed,
+}
+
 /// A body attached at a node (a clump weight, a discrete buoyancy module): its mass, its submerged
 /// weight (negative: buoyant), and, in water, its drag area and added mass (both isotropic: a
 /// compact body, unlike the pipe's normal-only drag and added mass).
@@ -167,6 +179,11 @@ pub struct LineModel {
     pub supports: (Support, Support),
     /// Bodies attached at nodes ([`LineModel::with_attachments`]).
     pub attachments: Vec<Attachment>,
+    /// Zones of other soil along the route ([`LineModel::with_seabed_zones`]).
+    pub seabed_zones: Vec<SeabedZone>,
+    /// Each node's seabed law, when zones were assigned to nodes ([`LineModel::zoned_at`]);
+    /// empty: every node has the default law.
+    pub node_seabed: Vec<Seabed>,
 }
 
 impl LineModel {
@@ -253,7 +270,48 @@ impl LineModel {
             }),
             supports: (spec.top, spec.anchor),
             attachments: Vec::new(),
+            seabed_zones: Vec::new(),
+            node_seabed: Vec::new(),
         })
+    }
+
+    /// The Model with zones of other soil along the route (their nodes are assigned by
+    /// [`LineModel::zoned_at`]).
+    pub fn with_seabed_zones(mut self, zones: Vec<SeabedZone>) -> Self {
+        self.seabed_zones = zones;
+        self
+    }
+
+    /// The Model with each node's seabed law: the zone under the node's x in the configuration `q`
+    /// (3 per node; the statics' base configuration), else the default. Unchanged without zones.
+    pub fn zoned_at(mut self, q: &[f64]) -> Self {
+        if self.seabed_zones.is_empty() {
+            return self;
+        }
+        let Some(sb) = self.seabed else { return self };
+        self.node_seabed = (0..self.nodes())
+            .map(|i| *self.seabed_law_at_x(q[3 * i]).unwrap_or(&sb.seabed))
+            .collect();
+        self
+    }
+
+    /// Node `i`'s seabed law (`None` without a seabed).
+    #[inline]
+    pub fn seabed_law(&self, i: usize) -> Option<&Seabed> {
+        let sb = self.seabed.as_ref()?;
+        Some(self.node_seabed.get(i).unwrap_or(&sb.seabed))
+    }
+
+    /// The seabed law at the horizontal position `x`: its zone's, else the default (`None` without
+    /// a seabed).
+    pub fn seabed_law_at_x(&self, x: f64) -> Option<&Seabed> {
+        let sb = self.seabed.as_ref()?;
+        Some(
+            self.seabed_zones
+                .iter()
+                .find(|z| z.from_x <= x && x < z.to_x)
+                .map_or(&sb.seabed, |z| &z.seabed),
+        )
     }
 
     /// The Model with bodies attached: each `(arc, attachment)` at the node nearest to its arc

@@ -34,6 +34,7 @@ use crate::environment::Hydro;
 use crate::loads::{self, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::sparse::SolveError;
+use catena_seabed::law::Seabed;
 
 /// Options of the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -389,9 +390,16 @@ pub struct EndPositions {
 /// The static embedment of a pipe of submerged weight `w` (N/m) resting on the seabed: the
 /// penetration where the backbone plus soil buoyancy carries the weight. `None` without a seabed.
 pub fn static_embedment(model: &LineModel, w: f64) -> Option<f64> {
-    let sb = model.seabed.as_ref()?;
-    let d = model.node_od[model.nodes() - 1];
-    let f = |z: f64| sb.seabed.backbone(z).total() - w;
+    static_embedment_on(
+        model.seabed_law(model.nodes() - 1)?,
+        model.node_od[model.nodes() - 1],
+        w,
+    )
+}
+
+/// [`static_embedment`] on a given seabed law for a pipe of contact diameter `d`.
+pub fn static_embedment_on(seabed: &Seabed, d: f64, w: f64) -> Option<f64> {
+    let f = |z: f64| seabed.backbone(z).total() - w;
     let mut hi = 1e-3 * d;
     while f(hi) < 0.0 {
         hi *= 2.0;

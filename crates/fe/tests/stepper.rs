@@ -727,3 +727,56 @@ fn attached_bodies_add_mass_and_weight() {
     );
     assert!((top / (w * len + clump) - 1.0).abs() < 1e-9, "{top}");
 }
+
+/// Soil that varies along the route (statics): a 30 m pipe (w 500 N/m, D 0.3 m) resting on a linear
+/// seabed of stiffness 1e5 N/m/m² with a zone of 2e4 N/m/m² over x ∈ [12, 40) m. Far from the
+/// boundary each node sinks to its own soil's embedment `w/(k·D)` (16.7 mm and 83.3 mm), to 1e-5
+/// relative; the default law holds before the zone.
+#[test]
+fn a_soft_zone_sinks_the_pipe_to_its_own_embedment() {
+    use catena_fe::model::{SeabedContact, SeabedZone};
+    use catena_seabed::law::{Law, Seabed};
+    use catena_seabed::LinearSeabed;
+    let (len, w, od, k1, k2) = (30.0, 500.0, 0.3, 1e5, 2e4);
+    let law = |k: f64| Seabed {
+        law: Law::Linear(LinearSeabed::new(od, k, 0.0).expect("law")),
+        buoyancy: None,
+    };
+    let model = LineModel::build(&LineSpec {
+        segments: vec![segment(len, 30, 1e9, 1e3, 100.0, w, od)],
+        top: Support::Pinned,
+        anchor: Support::Free,
+        seabed: Some(SeabedContact {
+            seabed: law(k1),
+            mudline_z: 0.0,
+            friction: None,
+        }),
+        flexjoint: None,
+    })
+    .expect("model")
+    .with_seabed_zones(vec![SeabedZone {
+        from_x: 12.0,
+        to_x: 40.0,
+        seabed: law(k2),
+    }]);
+    let z0 = 0.5 * od - w / (k1 * od);
+    let q: Vec<f64> = (0..=30).flat_map(|i| [i as f64, z0, 0.0]).collect();
+    let model = model.zoned_at(&q);
+    let pl = Placement::new(&q);
+    let mut ws = StaticWorkspace::new(&model).expect("ws");
+    let mut u = vec![0.0; q.len()];
+    statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("statics");
+    let pen = |i: usize| 0.5 * od - (z0 + u[3 * i + 1]);
+    for (i, k) in [(3, k1), (5, k1), (22, k2), (28, k2)] {
+        let want = w / (k * od);
+        println!(
+            "node {i} (x {i} m): penetration {:.6} m (w/kD = {want:.6} m)",
+            pen(i)
+        );
+        assert!(
+            (pen(i) / want - 1.0).abs() < 1e-5,
+            "node {i}: {} vs {want}",
+            pen(i)
+        );
+    }
+}

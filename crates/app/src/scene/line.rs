@@ -32,8 +32,13 @@ impl Ends {
     /// embedment of the line's submerged weight `w` (N/m) on the Model's seabed (0 if none is found).
     pub fn positions(&self, model: &LineModel, w: f64) -> EndPositions {
         let z = self.anchor_z.unwrap_or_else(|| {
-            let emb = catena_fe::statics::static_embedment(model, w).unwrap_or(0.0);
-            0.5 * model.node_od[model.nodes() - 1] - emb
+            // On the soil at the anchor (its zone's, else the default).
+            let d = model.node_od[model.nodes() - 1];
+            let emb = model
+                .seabed_law_at_x(self.anchor_x)
+                .and_then(|sb| catena_fe::statics::static_embedment_on(sb, d, w))
+                .unwrap_or(0.0);
+            0.5 * d - emb
         });
         EndPositions {
             top: self.top,
@@ -237,7 +242,13 @@ pub(super) fn line_model(
         flexjoint,
     };
     let model = LineModel::build(&spec).map_err(|e| invalid(file, "mesh", e.to_string()))?;
-    Ok(model.with_attachments(&attachments(file, raw)?))
+    let zones = match &raw.seabed {
+        Some(t) => t.zones(file, "seabed", Some(l.od), Some(env.water_density))?,
+        None => Vec::new(),
+    };
+    Ok(model
+        .with_attachments(&attachments(file, raw)?)
+        .with_seabed_zones(zones))
 }
 
 /// `[[attachment]]`, checked: an arc length on the line, a mass ≥ 0 kg, a finite submerged weight

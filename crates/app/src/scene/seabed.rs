@@ -15,6 +15,7 @@
 //! | `lambda_rep` | — | required (R–Q) | repenetration offset |
 //! | `liftoff_smoothing` | — | false (R–Q) | cap uplift `P` by `P_IP` |
 //! | `f_b`, `soil_density`, `water_density` | —, kg/m³, kg/m³ | none | soil buoyancy (eq. 15): all three or none |
+//! | `[[seabed.zone]]` `from_x`, `to_x` and any law key | m, m, … | none | a stretch of the route `[from_x, to_x)` (riser scenes) whose law keys override the table's; zones may not overlap |
 //! | `[seabed.friction]` `axial`, `mobilisation` | —, m | none | axial friction (riser scenes, dynamics only): Coulomb μ on the normal seabed force, and the displacement δ > 0 that mobilises it |
 
 use catena_seabed::law::{Law, Seabed};
@@ -56,6 +57,28 @@ pub struct SeabedTable {
     pub soil_density: Option<f64>,
     pub water_density: Option<f64>,
     pub friction: Option<FrictionTable>,
+    #[serde(default)]
+    pub zone: Vec<ZoneTable>,
+}
+
+/// `[[seabed.zone]]` as written: a stretch of the route `[from_x, to_x)` whose law keys override the
+/// `[seabed]` table's (the law itself, its diameter and buoyancy stay the default's).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct ZoneTable {
+    pub from_x: f64,
+    pub to_x: f64,
+    pub stiffness: Option<f64>,
+    pub damping: Option<f64>,
+    pub su0: Option<f64>,
+    pub su_gradient: Option<f64>,
+    pub a: Option<f64>,
+    pub b: Option<f64>,
+    pub k_max: Option<f64>,
+    pub f_suc: Option<f64>,
+    pub lambda_suc: Option<f64>,
+    pub lambda_rep: Option<f64>,
 }
 
 /// `[seabed.friction]` as written.
@@ -116,6 +139,68 @@ impl SeabedTable {
             mu,
             mobilisation: delta,
         }))
+    }
+
+    /// `[[seabed.zone]]`, checked and built: each zone's law is the default table with the zone's
+    /// keys overriding it (errors name `seabed.zone[i].key`); `from_x < to_x`, and zones may not
+    /// overlap.
+    pub fn zones(
+        &self,
+        file: &str,
+        table: &str,
+        default_diameter: Option<f64>,
+        default_water_density: Option<f64>,
+    ) -> Result<Vec<catena_fe::model::SeabedZone>, SceneError> {
+        let mut out: Vec<catena_fe::model::SeabedZone> = Vec::new();
+        for (i, z) in self.zone.iter().enumerate() {
+            let name = format!("{table}.zone[{i}]");
+            if !(z.from_x.is_finite() && z.to_x.is_finite() && z.from_x < z.to_x) {
+                return Err(invalid(
+                    file,
+                    format!("{name}.to_x"),
+                    format!(
+                        "an end beyond the zone's start (from_x = {} m), got {} m",
+                        z.from_x, z.to_x
+                    ),
+                ));
+            }
+            if let Some((j, o)) = out
+                .iter()
+                .enumerate()
+                .find(|(_, o)| z.from_x < o.to_x && o.from_x < z.to_x)
+            {
+                return Err(invalid(
+                    file,
+                    format!("{name}.from_x"),
+                    format!(
+                        "a zone that does not overlap another ({table}.zone[{j}] covers [{}, {}) m)",
+                        o.from_x, o.to_x
+                    ),
+                ));
+            }
+            let merged = SeabedTable {
+                stiffness: z.stiffness.or(self.stiffness),
+                damping: z.damping.or(self.damping),
+                su0: z.su0.or(self.su0),
+                su_gradient: z.su_gradient.or(self.su_gradient),
+                a: z.a.or(self.a),
+                b: z.b.or(self.b),
+                k_max: z.k_max.or(self.k_max),
+                f_suc: z.f_suc.or(self.f_suc),
+                lambda_suc: z.lambda_suc.or(self.lambda_suc),
+                lambda_rep: z.lambda_rep.or(self.lambda_rep),
+                friction: None,
+                zone: Vec::new(),
+                ..self.clone()
+            };
+            let seabed = merged.build(file, &name, default_diameter, default_water_density)?;
+            out.push(catena_fe::model::SeabedZone {
+                from_x: z.from_x,
+                to_x: z.to_x,
+                seabed,
+            });
+        }
+        Ok(out)
     }
 
     /// Builds the seabed. `table` is the table's name in the file (for messages); `default_diameter`
