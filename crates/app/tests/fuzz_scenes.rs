@@ -25,6 +25,9 @@ const CASES: &[&str] = &[
     "watchet/pull-up-lay-down",
     "hard/sticky-soil",
     "scr1000/storm23",
+    "benchmarks/scr-attachments",
+    "hard/friction-stick-slip",
+    "hard/zone-boundary",
 ];
 
 const HOSTILE: &[&str] = &[

@@ -685,6 +685,23 @@ fn describe_scene(
         if sb.seabed.buoyancy.is_some() {
             effects.push("soil buoyancy".into());
         }
+        let zones = scene.model.seabed_zones.len();
+        if zones > 0 {
+            effects.push(format!("{zones} soil zone(s) along the route"));
+        }
+        if let Some(f) = sb.friction {
+            effects.push(format!(
+                "axial seabed friction (μ {}, δ {} m; dynamics only)",
+                f.mu, f.mobilisation
+            ));
+        }
+    }
+    let bodies = scene.model.attachments.len();
+    if bodies > 0 {
+        effects.push(format!(
+            "{bodies} attached bod{}",
+            if bodies == 1 { "y" } else { "ies" }
+        ));
     }
     if scene.model.flexjoint.is_some() {
         effects.push("flexjoint".into());
