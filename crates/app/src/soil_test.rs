@@ -115,6 +115,13 @@ impl SoilTestCase {
     pub fn parse(file: &str, text: &str) -> Result<Self, SceneError> {
         let raw: SoilTestFile = scene::parse(file, text)?;
         let seabed = raw.seabed.build(file, "seabed", None, None)?;
+        if raw.seabed.profile.is_some() {
+            return Err(invalid(
+                file,
+                "seabed.profile",
+                "no profile in a soil element test (it shapes a riser's seabed)",
+            ));
+        }
         if !raw.seabed.zone.is_empty() {
             return Err(invalid(
                 file,

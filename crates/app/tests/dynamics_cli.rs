@@ -145,7 +145,11 @@ fn seabed_history_is_committed_only_at_converged_steps() {
         assert_eq!(info.cuts, 0);
         for i in 0..model.nodes() {
             let z = model
-                .penetration(i, pl.base[3 * i + 1] + state.u[3 * i + 1])
+                .penetration(
+                    i,
+                    pl.base[3 * i] + state.u[3 * i],
+                    pl.base[3 * i + 1] + state.u[3 * i + 1],
+                )
                 .expect("seabed");
             let once = sb.evaluate(&prev[i], z, -state.v[3 * i + 1], spec.dt).next;
             assert_eq!(state.history[i], once, "node {i}");

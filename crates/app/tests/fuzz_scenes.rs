@@ -28,6 +28,7 @@ const CASES: &[&str] = &[
     "benchmarks/scr-attachments",
     "hard/friction-stick-slip",
     "hard/zone-boundary",
+    "scr1000/static-rq-slope-2deg",
 ];
 
 const HOSTILE: &[&str] = &[

@@ -317,3 +317,39 @@ fn a_bad_kinematics_interval_names_file_and_key() {
         }
     }
 }
+
+/// The paper's SCR on a seabed sloping 2° up towards the anchor (issue 28,
+/// `cases/scr1000/static-rq-slope-2deg.toml`): the statics converge from the draped seed, and the
+/// frictionless seabed carries the resting pipe's down-slope weight, so the anchor's horizontal
+/// tension exceeds the top's by `w·sin α·L_s·cos α` (w = 1010.08 N/m, L_s = the length past the
+/// touchdown point), to 1 %; the line hangs deeper than on the flat seabed (the touchdown point
+/// further along it, the top tension higher).
+#[test]
+fn a_seabed_sloping_up_to_the_anchor_carries_the_pipes_down_slope_weight() {
+    let flat = statics::solve(
+        statics::read_scene(&root().join("cases/scr1000/static-rq.toml")).expect("scene"),
+    )
+    .expect("statics");
+    let slope = statics::solve(
+        statics::read_scene(&root().join("cases/scr1000/static-rq-slope-2deg.toml"))
+            .expect("scene"),
+    )
+    .expect("statics");
+    let (sf, ss) = (&flat.summary, &slope.summary);
+    let w = slope.scene.line.2;
+    let td = ss.touchdown_arc.expect("touchdown");
+    let alpha = 2f64.to_radians();
+    let want = w * alpha.sin() * alpha.cos() * (slope.model.length() - td);
+    let got = ss.anchor_horizontal_tension - ss.horizontal_tension;
+    println!(
+        "2° slope: top tension {:.2} kN (flat {:.2}), touchdown {td:.2} m (flat {:.2}); anchor H − top H {:.3} kN against w·sin α·cos α·L_s {:.3} kN",
+        ss.top_tension / 1e3,
+        sf.top_tension / 1e3,
+        sf.touchdown_arc.expect("td"),
+        got / 1e3,
+        want / 1e3
+    );
+    assert!((got / want - 1.0).abs() < 0.01, "{got} vs {want}");
+    assert!(ss.top_tension > sf.top_tension);
+    assert!(td > sf.touchdown_arc.expect("td"));
+}

@@ -37,7 +37,7 @@ pub fn static_(case: &Path, out: &Path) -> Result<String, AppError> {
     let js = out.join("summary.json");
     write_json(&js, &report::static_json(&run))?;
     let png: PathBuf = out.join("static.png");
-    plot::static_line(&png, &run.scene.title, &run.model.arc, &run.results)?;
+    plot::static_line(&png, &run.scene.title, &run.model, &run.results)?;
     let mut t = report::static_text(&run);
     let _ = writeln!(
         t,
@@ -114,7 +114,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     plot::static_line(
         &out.join("static.png"),
         &st.scene.title,
-        &st.model.arc,
+        &st.model,
         &st.results,
     )?;
     let mut bar = ProgressBar::new();

@@ -14,6 +14,27 @@ fn root() -> PathBuf {
 /// `(name, case, text to replace, replacement, the key the message must name)`.
 const ROWS: &[(&str, &str, &str, &str, &str)] = &[
     (
+        "profile with x not increasing",
+        "scr1000/static-rq-slope-2deg",
+        "profile = [[0.0, 0.0], [2000.0, -69.84]]",
+        "profile = [[0.0, 0.0], [0.0, -69.84]]",
+        "seabed.profile[1]",
+    ),
+    (
+        "profile above the sea",
+        "scr1000/static-rq-slope-2deg",
+        "profile = [[0.0, 0.0], [2000.0, -69.84]]",
+        "profile = [[0.0, 0.0], [2000.0, 1200.0]]",
+        "seabed.profile[1]",
+    ),
+    (
+        "profile of one point",
+        "scr1000/static-rq-slope-2deg",
+        "profile = [[0.0, 0.0], [2000.0, -69.84]]",
+        "profile = [[0.0, 0.0]]",
+        "seabed.profile",
+    ),
+    (
         "zone ending before it starts",
         "hard/zone-boundary",
         "to_x = 400.0 ",

@@ -523,7 +523,7 @@ impl Assembler {
             out.z[i] = q[1];
             out.theta[i] = q[2];
             (out.tension[i], out.moment[i]) = self.nodal_tension_moment(i);
-            out.penetration[i] = model.penetration(i, q[1]).unwrap_or(0.0);
+            out.penetration[i] = model.penetration(i, q[0], q[1]).unwrap_or(0.0);
             out.seabed_force[i] = if model.seabed.is_some() {
                 seabed_force(i)
             } else {

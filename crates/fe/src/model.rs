@@ -184,6 +184,10 @@ pub struct LineModel {
     /// Each node's seabed law, when zones were assigned to nodes ([`LineModel::zoned_at`]);
     /// empty: every node has the default law.
     pub node_seabed: Vec<Seabed>,
+    /// The mudline's height at horizontal positions, `(x, z)` with x increasing, piecewise linear
+    /// and constant beyond the ends ([`LineModel::with_mudline_profile`]); empty: flat at the seabed's
+    /// `mudline_z`.
+    pub mudline_profile: Vec<(f64, f64)>,
 }
 
 impl LineModel {
@@ -272,7 +276,34 @@ impl LineModel {
             attachments: Vec::new(),
             seabed_zones: Vec::new(),
             node_seabed: Vec::new(),
+            mudline_profile: Vec::new(),
         })
+    }
+
+    /// The Model on a mudline of the given profile (see [`LineModel::mudline_profile`]).
+    pub fn with_mudline_profile(mut self, profile: Vec<(f64, f64)>) -> Self {
+        self.mudline_profile = profile;
+        self
+    }
+
+    /// The mudline's height and slope `dz/dx` at the horizontal position `x`: the profile's, or the
+    /// flat seabed's `(mudline_z, 0)` (0 without a seabed).
+    #[inline]
+    pub fn mudline_at(&self, x: f64) -> (f64, f64) {
+        let p = &self.mudline_profile;
+        if p.is_empty() {
+            return (self.seabed.map_or(0.0, |s| s.mudline_z), 0.0);
+        }
+        if x <= p[0].0 {
+            return (p[0].1, 0.0);
+        }
+        for w in p.windows(2) {
+            if x < w[1].0 {
+                let m = (w[1].1 - w[0].1) / (w[1].0 - w[0].0);
+                return (w[0].1 + m * (x - w[0].0), m);
+            }
+        }
+        (p[p.len() - 1].1, 0.0)
     }
 
     /// The Model with zones of other soil along the route (their nodes are assigned by
@@ -357,15 +388,19 @@ impl LineModel {
         self
     }
 
-    /// The penetration of node `i`'s invert below the mudline at height `z` (positive down), or
-    /// `None` without a seabed.
+    /// The penetration of node `i`'s invert below the mudline at `(x, z)` (positive into the seabed,
+    /// normal to the local mudline), or `None` without a seabed.
     #[inline]
-    pub fn penetration(&self, i: usize, z: f64) -> Option<f64> {
-        self.seabed
-            .as_ref()
-            .map(|s| s.mudline_z - (z - 0.5 * self.node_od[i]))
+    pub fn penetration(&self, i: usize, x: f64, z: f64) -> Option<f64> {
+        let sb = self.seabed.as_ref()?;
+        if self.mudline_profile.is_empty() {
+            return Some(sb.mudline_z - (z - 0.5 * self.node_od[i]));
+        }
+        // Normal to the local mudline: the centre's height above it times cos α, less D/2.
+        let (zm, m) = self.mudline_at(x);
+        let c = 1.0 / (1.0 + m * m).sqrt();
+        Some(0.5 * self.node_od[i] - (z - zm) * c)
     }
-
     /// The mean submerged weight per unit length, N/m.
     pub fn mean_weight(&self) -> f64 {
         self.elements.iter().map(|e| e.weight * e.l0).sum::<f64>() / self.length()

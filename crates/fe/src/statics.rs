@@ -440,11 +440,13 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
     let (xa, za) = ends.anchor;
     let span = xt - xa;
     let w = model.mean_weight();
-    let contact = model.seabed.as_ref().map(|sb| {
-        let d = model.node_od[n - 1];
-        let emb = static_embedment(model, w).unwrap_or(0.0);
-        sb.mudline_z + 0.5 * d - emb
-    });
+    // The seed's seabed is flat at the mudline under the anchor (a profile's nodes are draped onto
+    // it below).
+    let emb = static_embedment(model, w).unwrap_or(0.0);
+    let contact = model
+        .seabed
+        .as_ref()
+        .map(|_| model.mudline_at(xa).0 + 0.5 * model.node_od[n - 1] - emb);
     let shape_for = |length: f64| -> Result<(Shape, f64), StaticError> {
         if let Some(z_contact) = contact {
             if let Ok(c) = TouchdownCatenary::solve(w, span, zt - z_contact, length) {
@@ -487,6 +489,18 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
         };
         q[3 * i + 2] = th;
     }
+    if let (Some(zc), false) = (contact, model.mudline_profile.is_empty()) {
+        // On a profile: the nodes the seed lays on its flat seabed follow the mudline, at the same
+        // embedment normal to it, turned by its slope.
+        for i in 0..n {
+            if (q[3 * i + 1] - zc).abs() <= 1e-9 * zc.abs().max(1.0) {
+                let (zm, m) = model.mudline_at(q[3 * i]);
+                let c = 1.0 / (1.0 + m * m).sqrt();
+                q[3 * i + 1] = zm + (0.5 * model.node_od[i] - emb) / c;
+                q[3 * i + 2] += m.atan();
+            }
+        }
+    }
     q[0] = xt;
     q[1] = zt;
     q[3 * (n - 1)] = xa;
@@ -508,7 +522,11 @@ pub fn line_results(
     let mut r = LineResults::new(model.nodes());
     let pen = |i: usize| {
         model
-            .penetration(i, pl.base[3 * i + 1] + u[3 * i + 1])
+            .penetration(
+                i,
+                pl.base[3 * i] + u[3 * i],
+                pl.base[3 * i + 1] + u[3 * i + 1],
+            )
             .unwrap_or(0.0)
     };
     let res = &ws.asm.residual;

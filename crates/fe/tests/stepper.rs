@@ -780,3 +780,66 @@ fn a_soft_zone_sinks_the_pipe_to_its_own_embedment() {
         );
     }
 }
+
+/// A sloping seabed (statics): a 20 m pipe (w 500 N/m, D 0.3 m) lying down a 5° slope of a linear
+/// seabed (k 1e5 N/m/m²), pinned at its upper end. Contact acts normal to the mudline, and the
+/// seabed is frictionless in the statics: the pipe presses into the slope by `w·cos α/(k·D)` at every
+/// node away from the ends (to 1e-6) and hangs from its pin by the slope's share of its weight,
+/// `w·L·sin α` along the slope (to 1e-6). With the contact force vertical instead of normal, both
+/// fail.
+#[test]
+fn a_pipe_on_a_slope_presses_normal_to_it_and_hangs_from_its_pin() {
+    use catena_fe::model::SeabedContact;
+    use catena_seabed::law::{Law, Seabed};
+    use catena_seabed::LinearSeabed;
+    let (len, n, w, od, k) = (20.0, 20, 500.0, 0.3, 1e5);
+    let alpha = 5f64.to_radians();
+    let (c, s) = (alpha.cos(), alpha.sin());
+    let m = -alpha.tan();
+    let model = LineModel::build(&LineSpec {
+        segments: vec![segment(len, n, 1e10, 1e3, 100.0, w, od)],
+        top: Support::Pinned,
+        anchor: Support::Free,
+        seabed: Some(SeabedContact {
+            seabed: Seabed {
+                law: Law::Linear(LinearSeabed::new(od, k, 0.0).expect("law")),
+                buoyancy: None,
+            },
+            mudline_z: 0.0,
+            friction: None,
+        }),
+        flexjoint: None,
+    })
+    .expect("model")
+    .with_mudline_profile(vec![(-100.0, -100.0 * m), (100.0, 100.0 * m)]);
+    let pen = w * c / (k * od);
+    // Each node on the slope, its centre (D/2 − pen) above the mudline along the normal
+    // n = (sin α, cos α) (the slope descends towards +x).
+    let h = 0.5 * od - pen;
+    let q: Vec<f64> = (0..=n)
+        .flat_map(|i| {
+            let sx = i as f64 * len / n as f64;
+            [sx * c + h * s, m * (sx * c) + h * c, -alpha]
+        })
+        .collect();
+    let pl = Placement::new(&q);
+    let mut ws = StaticWorkspace::new(&model).expect("ws");
+    let mut u = vec![0.0; q.len()];
+    statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("statics");
+    for i in [3, 10, 17] {
+        let (x, z) = (q[3 * i] + u[3 * i], q[3 * i + 1] + u[3 * i + 1]);
+        let p = model.penetration(i, x, z).expect("seabed");
+        assert!((p / pen - 1.0).abs() < 1e-6, "node {i}: {p} vs {pen}");
+    }
+    // The reaction at the pin (the residual there), along the slope (down-slope unit vector).
+    let (rx, rz) = (ws.asm.residual[0], ws.asm.residual[1]);
+    let along = rx * c - rz * s;
+    println!(
+        "pipe on a 5° slope: penetration {:.6} m (w·cos α/kD {pen:.6}); pin force along the slope {along:.3} N (w·L·sin α {:.3})",
+        model
+            .penetration(10, q[30] + u[30], q[31] + u[31])
+            .expect("seabed"),
+        w * len * s
+    );
+    assert!((along.abs() / (w * len * s) - 1.0).abs() < 1e-6, "{along}");
+}

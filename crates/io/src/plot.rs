@@ -545,9 +545,10 @@ fn marked_panel<DB: DrawingBackend>(
 pub fn static_line(
     path: &Path,
     title: &str,
-    arc: &[f64],
+    model: &catena_fe::model::LineModel,
     r: &catena_fe::statics::LineResults,
 ) -> Result<(), AppError> {
+    let arc = &model.arc;
     init_fonts();
     let err = plot_err(path);
     let perr = plot_err::<String>(path);
@@ -558,10 +559,20 @@ pub fn static_line(
     let blue = RGBColor(20, 90, 200);
     let n = arc.len();
     let shape: Vec<(f64, f64)> = (0..n).map(|i| (r.x[i], r.z[i])).collect();
-    let mudline = vec![
-        (r.x.iter().copied().fold(f64::INFINITY, f64::min), 0.0),
-        (r.x.iter().copied().fold(f64::NEG_INFINITY, f64::max), 0.0),
-    ];
+    // The mudline under the line: flat, or the scene's profile (its points within the line's span).
+    let (x0, x1) = (
+        r.x.iter().copied().fold(f64::INFINITY, f64::min),
+        r.x.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let mut mudline = vec![(x0, model.mudline_at(x0).0)];
+    mudline.extend(
+        model
+            .mudline_profile
+            .iter()
+            .filter(|p| p.0 > x0 && p.0 < x1)
+            .copied(),
+    );
+    mudline.push((x1, model.mudline_at(x1).0));
     let by_arc = |v: &[f64], scale: f64| -> Vec<(f64, f64)> {
         (0..n).map(|i| (arc[i], v[i] * scale)).collect()
     };
@@ -569,7 +580,7 @@ pub fn static_line(
         &areas[0],
         "configuration, to scale",
         "x from the anchor (m)",
-        "z above the mudline (m)",
+        "z above the mudline datum (m)",
         &[(mudline, RGBColor(140, 100, 40)), (shape, blue)],
     )
     .map_err(&perr)?;

@@ -38,7 +38,8 @@ impl Ends {
                 .seabed_law_at_x(self.anchor_x)
                 .and_then(|sb| catena_fe::statics::static_embedment_on(sb, d, w))
                 .unwrap_or(0.0);
-            0.5 * d - emb
+            let (zm, m) = model.mudline_at(self.anchor_x);
+            zm + (0.5 * d - emb) * (1.0 + m * m).sqrt()
         });
         EndPositions {
             top: self.top,
@@ -246,9 +247,14 @@ pub(super) fn line_model(
         Some(t) => t.zones(file, "seabed", Some(l.od), Some(env.water_density))?,
         None => Vec::new(),
     };
+    let profile = match &raw.seabed {
+        Some(t) => t.profile(file, "seabed", env.water_depth)?,
+        None => Vec::new(),
+    };
     Ok(model
         .with_attachments(&attachments(file, raw)?)
-        .with_seabed_zones(zones))
+        .with_seabed_zones(zones)
+        .with_mudline_profile(profile))
 }
 
 /// `[[attachment]]`, checked: an arc length on the line, a mass ≥ 0 kg, a finite submerged weight

@@ -15,6 +15,7 @@
 //! | `lambda_rep` | — | required (R–Q) | repenetration offset |
 //! | `liftoff_smoothing` | — | false (R–Q) | cap uplift `P` by `P_IP` |
 //! | `f_b`, `soil_density`, `water_density` | —, kg/m³, kg/m³ | none | soil buoyancy (eq. 15): all three or none |
+//! | `profile` | [[m, m], …] | flat at z = 0 | the mudline's height `[x, z]` along the route, piecewise linear, constant beyond the ends (riser scenes) |
 //! | `[[seabed.zone]]` `from_x`, `to_x` and any law key | m, m, … | none | a stretch of the route `[from_x, to_x)` (riser scenes) whose law keys override the table's; zones may not overlap |
 //! | `[seabed.friction]` `axial`, `mobilisation` | —, m | none | axial friction (riser scenes, dynamics only): Coulomb μ on the normal seabed force, and the displacement δ > 0 that mobilises it |
 
@@ -59,6 +60,7 @@ pub struct SeabedTable {
     pub friction: Option<FrictionTable>,
     #[serde(default)]
     pub zone: Vec<ZoneTable>,
+    pub profile: Option<Vec<Vec<f64>>>,
 }
 
 /// `[[seabed.zone]]` as written: a stretch of the route `[from_x, to_x)` whose law keys override the
@@ -141,6 +143,51 @@ impl SeabedTable {
         }))
     }
 
+    /// `profile = [[x, z], …]`, checked: at least two points, each a pair of finite numbers, x
+    /// strictly increasing, the mudline below the sea surface (`z < water_depth`). Empty without it.
+    pub fn profile(
+        &self,
+        file: &str,
+        table: &str,
+        water_depth: f64,
+    ) -> Result<Vec<(f64, f64)>, SceneError> {
+        let Some(rows) = &self.profile else {
+            return Ok(Vec::new());
+        };
+        let key = format!("{table}.profile");
+        if rows.len() < 2 {
+            return Err(invalid(file, &key, "at least two points [x, z] (m)"));
+        }
+        let mut out: Vec<(f64, f64)> = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            let k = format!("{key}[{i}]");
+            let &[x, z] = r.as_slice() else {
+                return Err(invalid(file, k, "a pair [x, z] in m"));
+            };
+            if !(x.is_finite() && z.is_finite()) {
+                return Err(invalid(file, k, "finite numbers [x, z] in m"));
+            }
+            if let Some(&(px, _)) = out.last() {
+                if x <= px {
+                    return Err(invalid(
+                        file,
+                        k,
+                        format!("an x beyond the previous point's ({px} m), got {x} m"),
+                    ));
+                }
+            }
+            if z >= water_depth {
+                return Err(invalid(
+                    file,
+                    k,
+                    format!("a mudline below the sea surface (z < the water depth {water_depth} m), got {z} m"),
+                ));
+            }
+            out.push((x, z));
+        }
+        Ok(out)
+    }
+
     /// `[[seabed.zone]]`, checked and built: each zone's law is the default table with the zone's
     /// keys overriding it (errors name `seabed.zone[i].key`); `from_x < to_x`, and zones may not
     /// overlap.
@@ -191,6 +238,7 @@ impl SeabedTable {
                 lambda_rep: z.lambda_rep.or(self.lambda_rep),
                 friction: None,
                 zone: Vec::new(),
+                profile: None,
                 ..self.clone()
             };
             let seabed = merged.build(file, &name, default_diameter, default_water_density)?;
