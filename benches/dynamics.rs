@@ -73,28 +73,15 @@ fn waves(c: &mut Criterion) {
         .expect("exact");
     let mut g = c.benchmark_group("waves");
     g.sample_size(20);
-    const STEPS: usize = 20;
     for (name, scene) in [
         ("line400", line400),
         ("line400_exact", line400_exact),
         ("storm23_fatigue_mesh", storm23),
         ("storm23_fatigue_mesh_exact", storm23_exact),
     ] {
-        let st = catena::statics::solve(scene).expect("statics");
-        let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
-        let mut ws = DynWorkspace::new(&dm.line).expect("ws");
-        let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
-        while state.t < 120.0 - 0.5 * spec.dt {
-            dynamics::advance(&dm, &mut state, &mut ws, spec.dt).expect("step");
-        }
+        let (spec, dm, mut ws, state) = storm_at_120_s(scene);
         g.bench_function(format!("{name}_20_steps"), |b| {
-            b.iter(|| {
-                let mut s = state.clone();
-                for _ in 0..STEPS {
-                    dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
-                }
-                s
-            })
+            b.iter(|| storm_steps(&dm, &state, &mut ws, spec.dt))
         });
         // The parts waves add, alone, at the same times and the nodes' positions at the start:
         // what `dynamics` does for the kinematics (sampled on the grid and interpolated, or
@@ -161,6 +148,39 @@ fn waves(c: &mut Criterion) {
     g.finish();
 }
 
+/// A storm scene's dynamic Model, Workspace and State after 120 s (the ramp over).
+fn storm_at_120_s(
+    scene: catena::scene::riser::RiserScene,
+) -> (
+    catena::scene::riser::DynamicSpec,
+    catena_fe::dynamics::DynamicModel,
+    DynWorkspace,
+    catena_fe::dynamics::DynState,
+) {
+    let st = catena::statics::solve(scene).expect("statics");
+    let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+    let mut ws = DynWorkspace::new(&dm.line).expect("ws");
+    let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
+    while state.t < 120.0 - 0.5 * spec.dt {
+        dynamics::advance(&dm, &mut state, &mut ws, spec.dt).expect("step");
+    }
+    (spec, dm, ws, state)
+}
+
+/// [`STEPS`] steps of `dt` from a copy of `state`.
+fn storm_steps(
+    dm: &catena_fe::dynamics::DynamicModel,
+    state: &catena_fe::dynamics::DynState,
+    ws: &mut DynWorkspace,
+    dt: f64,
+) -> catena_fe::dynamics::DynState {
+    let mut s = state.clone();
+    for _ in 0..STEPS {
+        dynamics::advance(dm, &mut s, ws, dt).expect("step");
+    }
+    s
+}
+
 /// What axial seabed friction costs a storm step: storm 23 (the fatigue mesh, 400 wave components)
 /// without and with `[seabed.friction]` (μ 0.5, δ 5 mm), 20 steps from the state at 120 s.
 fn friction(c: &mut Criterion) {
@@ -174,25 +194,16 @@ fn friction(c: &mut Criterion) {
     g.sample_size(20);
     for (name, text) in [("storm23", &text), ("storm23_friction", &with_friction)] {
         let scene = RiserScene::parse("storm23", text, &files).expect("scene");
-        let st = catena::statics::solve(scene).expect("statics");
-        let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
-        let mut ws = DynWorkspace::new(&dm.line).expect("ws");
-        let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
-        while state.t < 120.0 - 0.5 * spec.dt {
-            dynamics::advance(&dm, &mut state, &mut ws, spec.dt).expect("step");
-        }
+        let (spec, dm, mut ws, state) = storm_at_120_s(scene);
         g.bench_function(format!("{name}_20_steps"), |b| {
-            b.iter(|| {
-                let mut s = state.clone();
-                for _ in 0..20 {
-                    dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
-                }
-                s
-            })
+            b.iter(|| storm_steps(&dm, &state, &mut ws, spec.dt))
         });
     }
     g.finish();
 }
+
+/// Steps of a storm benchmark.
+const STEPS: usize = 20;
 
 criterion_group!(benches, bench, waves, friction);
 criterion_main!(benches);

@@ -134,32 +134,13 @@ pub fn penetration(
     v: &[f64],
     i: usize,
 ) -> Option<(f64, f64)> {
-    let sb = line.seabed.as_ref()?;
-    if line.mudline_profile.is_empty() {
-        return Some((
-            sb.mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * line.node_od[i]),
-            -v[3 * i + 1],
-        ));
-    }
-    // Normal to the local mudline: `n = (−sin α, cos α)`, `z_pen = D/2 − (z − z_m(x))·cos α`,
-    // `ż_pen = −n·v`.
-    let (x, z) = (pl.base[3 * i] + u[3 * i], pl.base[3 * i + 1] + u[3 * i + 1]);
-    let (zm, m) = line.mudline_at(x);
-    let c = 1.0 / (1.0 + m * m).sqrt();
-    let sn = m * c;
-    Some((
-        0.5 * line.node_od[i] - (z - zm) * c,
-        sn * v[3 * i] - c * v[3 * i + 1],
-    ))
-}
-
-/// The unit normal `(−sin α, cos α)` of the mudline at node `i`'s position (pointing out of the
-/// seabed; `(0, 1)` on a flat one).
-#[inline]
-fn mudline_normal(line: &LineModel, x: f64) -> (f64, f64) {
-    let (_, m) = line.mudline_at(x);
-    let c = 1.0 / (1.0 + m * m).sqrt();
-    (-m * c, c)
+    line.seabed.as_ref()?;
+    let (z, rate, _) = if line.mudline_profile.is_empty() {
+        penetration_of::<false>(line, pl, u, v, i)
+    } else {
+        penetration_of::<true>(line, pl, u, v, i)
+    };
+    Some((z, rate))
 }
 
 /// Adds the seabed's force `L·P` (`lp`, N) along the mudline's normal `n` at node `i` (residual
@@ -286,8 +267,9 @@ fn add_seabed(
     }
 }
 
-/// The penetration and its rate at node `i`, on a flat seabed or (`SLOPED`) normal to the profile
-/// ([`penetration`]).
+/// The penetration, its rate and the mudline's unit normal `(−sin α, cos α)` (out of the seabed)
+/// at node `i` of a line with a seabed, on a flat seabed (normal `(0, 1)`) or (`SLOPED`) normal to
+/// the profile ([`penetration`]; the loops choose `SLOPED` once).
 #[inline(always)]
 fn penetration_of<const SLOPED: bool>(
     line: &LineModel,
@@ -295,16 +277,26 @@ fn penetration_of<const SLOPED: bool>(
     u: &[f64],
     v: &[f64],
     i: usize,
-) -> (f64, f64) {
-    if SLOPED {
-        penetration(line, pl, u, v, i).unwrap_or((0.0, 0.0))
-    } else {
+) -> (f64, f64, (f64, f64)) {
+    let (x, z) = (pl.base[3 * i] + u[3 * i], pl.base[3 * i + 1] + u[3 * i + 1]);
+    if !SLOPED {
         let mudline_z = line.seabed.as_ref().map_or(0.0, |s| s.mudline_z);
-        (
-            mudline_z - (pl.base[3 * i + 1] + u[3 * i + 1] - 0.5 * line.node_od[i]),
+        return (
+            mudline_z - (z - 0.5 * line.node_od[i]),
             -v[3 * i + 1],
-        )
+            (0.0, 1.0),
+        );
     }
+    // Normal to the local mudline: `n = (−sin α, cos α)`, `z_pen = D/2 − (z − z_m(x))·cos α`,
+    // `ż_pen = −n·v`.
+    let (zm, m) = line.mudline_at(x);
+    let c = 1.0 / (1.0 + m * m).sqrt();
+    let sn = m * c;
+    (
+        0.5 * line.node_od[i] - (z - zm) * c,
+        sn * v[3 * i] - c * v[3 * i + 1],
+        (-sn, c),
+    )
 }
 
 /// [`add_seabed`]'s loops, on a flat seabed or (`SLOPED`) a profile.
@@ -321,11 +313,10 @@ fn seabed_loops<const SLOPED: bool>(
     let (model, pl) = (m.line, m.placement);
     let Some(sb) = &model.seabed else { return };
     let (u, v) = (at.u, at.v);
-    let normal_at = |i: usize| SLOPED.then(|| mudline_normal(model, pl.base[3 * i] + u[3 * i]));
     match pass {
         SeabedPass::Backbone => {
             for i in 0..model.nodes() {
-                let z_pen = penetration_of::<SLOPED>(model, pl, u, u, i).0;
+                let (z_pen, _, n) = penetration_of::<SLOPED>(model, pl, u, u, i);
                 if z_pen <= 0.0 {
                     seabed_force[i] = 0.0;
                     continue;
@@ -336,7 +327,7 @@ fn seabed_loops<const SLOPED: bool>(
                 seabed_force[i] = t.total();
                 // d(−L·F(z_pen))/dz = L·F'(z_pen), since dz_pen/dz = −1 (on a slope: −n).
                 let kk = scale.with_k.then_some(l * t.tangent);
-                add_contact(asm, model, i, l * t.total(), kk, normal_at(i));
+                add_contact(asm, model, i, l * t.total(), kk, SLOPED.then_some(n));
             }
         }
         SeabedPass::Trial {
@@ -348,7 +339,7 @@ fn seabed_loops<const SLOPED: bool>(
         } => {
             let mut spare = TrialMemo::default();
             for i in 0..model.nodes() {
-                let (z, zdot) = penetration_of::<SLOPED>(model, pl, u, v, i);
+                let (z, zdot, n) = penetration_of::<SLOPED>(model, pl, u, v, i);
                 // The trial history is kept only in the pass expected to converge; the others need
                 // the force alone. Only a law that keeps something has memos (the linear law's
                 // trials take `spare`).
@@ -373,7 +364,7 @@ fn seabed_loops<const SLOPED: bool>(
                     c *= l;
                     scale.k * (k + scale.c_v * c)
                 });
-                add_contact(asm, model, i, l * up, kk, normal_at(i));
+                add_contact(asm, model, i, l * up, kk, SLOPED.then_some(n));
             }
         }
     }
@@ -634,6 +625,41 @@ mod tests {
         (free, global)
     }
 
+    /// `(R(+h) − R(−h))/2h` of two residuals.
+    fn central_difference(rp: &[f64], rm: &[f64], h: f64) -> Vec<f64> {
+        rp.iter()
+            .zip(rm)
+            .map(|(p, m)| (p - m) / (2.0 * h))
+            .collect()
+    }
+
+    /// The worst difference (of the largest entry) between `K·d` and the central difference of the
+    /// residual along `d`, seabed alone, at rest (the structural damping's force is then zero).
+    fn seabed_fd_worst(model: &LineModel, pl: &Placement, static_pass: bool) -> f64 {
+        let (d, dg) = direction(model, 1.0);
+        let v = vec![0.0; 3 * N];
+        let scale = TangentScale {
+            with_k: true,
+            k: 1.0,
+            c_v: 0.0,
+        };
+        let (_, kd) = evaluate(
+            model,
+            pl,
+            None,
+            static_pass,
+            (&vec![0.0; 3 * N], &v),
+            scale,
+            &d,
+        );
+        let h = 1e-7;
+        let shifted = |s: f64| -> Vec<f64> {
+            let u: Vec<f64> = dg.iter().map(|x| s * h * x).collect();
+            evaluate(model, pl, None, static_pass, (&u, &v), scale, &d).0
+        };
+        worst(&kd, &central_difference(&shifted(1.0), &shifted(-1.0), h))
+    }
+
     fn worst(a: &[f64], b: &[f64]) -> f64 {
         let big = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         a.iter()
@@ -653,28 +679,7 @@ mod tests {
         for (name, law, static_pass) in [("rq backbone", rq, true), ("linear trial", linear, false)]
         {
             let (model, pl) = line(law);
-            let (d, dg) = direction(&model, 1.0);
-            // At rest: the structural damping's force (and its dependence on u) is zero.
-            let v = vec![0.0; 3 * N];
-            let u0 = vec![0.0; 3 * N];
-            let scale = TangentScale {
-                with_k: true,
-                k: 1.0,
-                c_v: 0.0,
-            };
-            let (_, kd) = evaluate(&model, &pl, None, static_pass, (&u0, &v), scale, &d);
-            let h = 1e-7;
-            let shifted = |s: f64| -> Vec<f64> {
-                let u: Vec<f64> = dg.iter().map(|x| s * h * x).collect();
-                evaluate(&model, &pl, None, static_pass, (&u, &v), scale, &d).0
-            };
-            let (rp, rm) = (shifted(1.0), shifted(-1.0));
-            let fd: Vec<f64> = rp
-                .iter()
-                .zip(&rm)
-                .map(|(p, m)| (p - m) / (2.0 * h))
-                .collect();
-            let w = worst(&kd, &fd);
+            let w = seabed_fd_worst(&model, &pl, static_pass);
             println!("{name}: worst difference {w:.2e} of the largest entry");
             assert!(w < 1e-6, "{name}: {w}");
         }
@@ -709,11 +714,7 @@ mod tests {
             evaluate(&model, &pl, Some(&h_sea), false, (&u, &vs), with(0.0), &d).0
         };
         let (rp, rm) = (shifted(1.0), shifted(-1.0));
-        let fd: Vec<f64> = rp
-            .iter()
-            .zip(&rm)
-            .map(|(p, m)| (p - m) / (2.0 * h))
-            .collect();
+        let fd = central_difference(&rp, &rm, h);
         let w = worst(&cd, &fd);
         println!("damping: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
@@ -860,11 +861,7 @@ mod tests {
             r
         };
         let (rp, rm) = (residual(1.0), residual(-1.0));
-        let fd: Vec<f64> = rp
-            .iter()
-            .zip(&rm)
-            .map(|(p, m)| (p - m) / (2.0 * h))
-            .collect();
+        let fd = central_difference(&rp, &rm, h);
         let w = worst(&kd, &fd);
         println!("friction: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
@@ -941,11 +938,7 @@ mod tests {
             r
         };
         let (rp, rm) = (residual(1.0), residual(-1.0));
-        let fd: Vec<f64> = rp
-            .iter()
-            .zip(&rm)
-            .map(|(p, m)| (p - m) / (2.0 * h))
-            .collect();
+        let fd = central_difference(&rp, &rm, h);
         let w = worst(&cd, &fd);
         println!("attachment drag: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
@@ -1001,27 +994,7 @@ mod tests {
         {
             let (model, pl) = line(law);
             let model = model.with_mudline_profile(vec![(-5.0, 0.004), (4.5, 0.0), (20.0, -0.006)]);
-            let (d, dg) = direction(&model, 1.0);
-            let v = vec![0.0; 3 * N];
-            let u0 = vec![0.0; 3 * N];
-            let scale = TangentScale {
-                with_k: true,
-                k: 1.0,
-                c_v: 0.0,
-            };
-            let (_, kd) = evaluate(&model, &pl, None, static_pass, (&u0, &v), scale, &d);
-            let h = 1e-7;
-            let shifted = |s: f64| -> Vec<f64> {
-                let u: Vec<f64> = dg.iter().map(|x| s * h * x).collect();
-                evaluate(&model, &pl, None, static_pass, (&u, &v), scale, &d).0
-            };
-            let (rp, rm) = (shifted(1.0), shifted(-1.0));
-            let fd: Vec<f64> = rp
-                .iter()
-                .zip(&rm)
-                .map(|(p, m)| (p - m) / (2.0 * h))
-                .collect();
-            let w = worst(&kd, &fd);
+            let w = seabed_fd_worst(&model, &pl, static_pass);
             println!("{name} on a slope: worst difference {w:.2e} of the largest entry");
             assert!(w < 1e-6, "{name}: {w}");
         }

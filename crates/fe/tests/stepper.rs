@@ -133,6 +133,12 @@ fn peaks(t: &[f64], x: &[f64]) -> Vec<(f64, f64)> {
     out
 }
 
+/// The mean period between the first and the last upward zero crossing.
+fn mean_period(t: &[f64], x: &[f64]) -> f64 {
+    let c = up_crossings(t, x);
+    (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64
+}
+
 /// Times of the upward zero crossings (linear interpolation).
 fn up_crossings(t: &[f64], x: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
@@ -247,8 +253,7 @@ fn added_mass_is_normal_and_of_the_right_size() {
             ts.push(st.t);
             zs.push(st.u[3 * mid + 1]);
         }
-        let c = up_crossings(&ts, &zs);
-        let measured = (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64;
+        let measured = mean_period(&ts, &zs);
         println!(
             "string {label}: period {measured:.5} s, analytical {period:.5} s (mass {mass:.3} kg/m)"
         );
@@ -265,8 +270,7 @@ fn added_mass_is_normal_and_of_the_right_size() {
     let mut periods = Vec::new();
     for h in [None, Some(hydro(0.0, 0.0, 1.0))] {
         let (t, x) = bar_history(seg, &settings(0.0, h), 1e-3, dt, 2000);
-        let c = up_crossings(&t, &x);
-        periods.push((c[c.len() - 1] - c[0]) / (c.len() - 1) as f64);
+        periods.push(mean_period(&t, &x));
     }
     println!(
         "bar axial period in air {:.6e} s, in water {:.6e} s",
@@ -693,8 +697,7 @@ fn attached_bodies_add_mass_and_weight() {
             t.push(st.t);
             x.push(-st.u[4]);
         }
-        let ups = up_crossings(&t, &x);
-        let measured = (ups[ups.len() - 1] - ups[0]) / (ups.len() - 1) as f64;
+        let measured = mean_period(&t, &x);
         // The trapezoidal rule's period elongation at Ω = 2π/200: (Ω²/12) = 8.2e-5.
         println!(
             "attached mass {mass} kg, added {added} kg: period {measured:.6} s ({period:.6} s)"
