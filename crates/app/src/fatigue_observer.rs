@@ -8,6 +8,7 @@ use serde_json::Value;
 
 use crate::error::AppError;
 use crate::fatigue::rainflow::{Cycle, Rainflow};
+use crate::fatigue::sn::SnCurve;
 use crate::fatigue::stress::Fibre;
 use crate::fatigue::FatigueSpec;
 use crate::observe::{Control, Observer, RunContext, StepView, Stop};
@@ -17,13 +18,16 @@ use crate::observe::{Control, Observer, RunContext, StepView, Stop};
 pub struct Fatigue {
     /// The specification.
     pub spec: FatigueSpec,
-    /// The factor on every stress range: SCF × thickness correction.
+    /// The factor on every stress range of the specification's own section and curve: SCF ×
+    /// thickness correction (a line of sections has one per node, `node_factor`).
     pub factor: f64,
+    /// Each node's factor on its stress ranges (its type's SCF × its wall's thickness correction).
+    pub node_factor: Vec<f64>,
+    /// Each node's S-N curve.
+    pub node_curve: Vec<SnCurve>,
     counters: Vec<Rainflow>,
     /// Miner damage, indexed `(node·fibres + fibre)·2 + side` (side 0 top, 1 bottom).
     pub damage: Vec<f64>,
-    /// Precomputed: `1/A`, `r/I` per fibre, and `T_w − T_e = k0 + k1·(d − z)`.
-    coef: (f64, [f64; 2], f64, f64),
     /// First and last time counted, s.
     pub span: (Option<f64>, f64),
     n: usize,
@@ -38,28 +42,29 @@ struct Saved {
 }
 
 impl Fatigue {
-    /// The observer for `n` nodes.
+    /// The observer for `n` nodes (each with the specification's section and curve, or, for a line
+    /// of sections, its own: [`FatigueSpec::nodes`]).
     pub fn new(spec: FatigueSpec, n: usize) -> Self {
         let factor = spec.scf * spec.curve.thickness_factor(spec.section.wall);
         let m = n * spec.fibres.len() * 2;
-        let sec = &spec.section;
-        let pi = std::f64::consts::PI;
-        let id = sec.od - 2.0 * sec.wall;
-        let (a_i, a_o) = (pi / 4.0 * id * id, pi / 4.0 * sec.od * sec.od);
-        let mut r_over_i = [0.0; 2];
-        for (k, f) in spec.fibres.iter().enumerate().take(2) {
-            r_over_i[k] = sec.radius(*f) / sec.inertia();
-        }
-        let coef = (
-            1.0 / sec.area(),
-            r_over_i,
-            sec.internal_pressure * a_i,
-            sec.gravity * (sec.contents_density * a_i - sec.water_density * a_o),
-        );
+        let node = |i: usize| {
+            spec.nodes
+                .get(i)
+                .copied()
+                .unwrap_or((spec.section, spec.curve, spec.scf))
+        };
+        let node_factor = (0..n)
+            .map(|i| {
+                let (sec, curve, scf) = node(i);
+                scf * curve.thickness_factor(sec.wall)
+            })
+            .collect();
+        let node_curve = (0..n).map(|i| node(i).1).collect();
         Self {
-            coef,
             spec,
             factor,
+            node_factor,
+            node_curve,
             counters: vec![Rainflow::new(); m],
             damage: vec![0.0; m],
             span: (None, 0.0),
@@ -75,13 +80,12 @@ impl Fatigue {
         self.span.1 = s.t;
         let r = s.results;
         let nf = self.spec.fibres.len();
-        let (curve, factor) = (self.spec.curve, self.factor);
+        let sections = &self.spec.nodes;
         for i in 0..self.n {
+            let (curve, factor) = (self.node_curve[i], self.node_factor[i]);
+            let sec = sections.get(i).map_or(&self.spec.section, |n| &n.0);
             for (k, f) in self.spec.fibres.iter().enumerate() {
-                let (top, bottom) =
-                    self.spec
-                        .section
-                        .fibre_stresses(*f, r.tension[i], r.moment[i], r.z[i]);
+                let (top, bottom) = sec.fibre_stresses(*f, r.tension[i], r.moment[i], r.z[i]);
                 for (side, sigma) in [(0, top), (1, bottom)] {
                     let j = (i * nf + k) * 2 + side;
                     let d = &mut self.damage[j];
@@ -122,8 +126,17 @@ impl Observer for Fatigue {
         Ok(Control::Continue)
     }
     fn finish(&mut self, _: &RunContext<'_>, _: Option<&Stop>) -> Result<(), AppError> {
-        let (curve, factor) = (self.spec.curve, self.factor);
-        for (c, d) in self.counters.iter_mut().zip(self.damage.iter_mut()) {
+        let per_node = 2 * self.spec.fibres.len();
+        for (j, (c, d)) in self
+            .counters
+            .iter_mut()
+            .zip(self.damage.iter_mut())
+            .enumerate()
+        {
+            let (curve, factor) = (
+                self.node_curve[j / per_node],
+                self.node_factor[j / per_node],
+            );
             std::mem::take(c).finish(&mut |cy: Cycle| {
                 *d += cy.count / curve.cycles(factor * cy.range);
             });
@@ -156,7 +169,6 @@ impl Observer for Fatigue {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fatigue::sn::SnCurve;
     use crate::fatigue::stress::PipeSection;
     use catena_fe::dynamics::DynState;
     use catena_fe::statics::LineResults;
@@ -185,6 +197,7 @@ mod tests {
             design_factor: None,
             start: 0.0,
             section,
+            nodes: Vec::new(),
         };
         let mut f = Fatigue::new(spec, 1);
         let state = DynState::default();
@@ -209,7 +222,7 @@ mod tests {
             f.take(&view);
         }
         // The residue as `finish` counts it (half cycles).
-        let (curve, factor) = (f.spec.curve, f.factor);
+        let (curve, factor) = (f.node_curve[0], f.node_factor[0]);
         for (c, d) in f.counters.iter_mut().zip(f.damage.iter_mut()) {
             std::mem::take(c).finish(&mut |cy: Cycle| {
                 *d += cy.count / curve.cycles(factor * cy.range);

@@ -334,6 +334,8 @@ pub struct Envelopes {
     /// Scratch for wall tension and the two fibre stresses (empty without a section).
     section_scratch: [Vec<f64>; 3],
     section: Option<crate::fatigue::stress::PipeSection>,
+    /// A line of sections: each node's (empty: `section` at every node).
+    node_sections: Vec<crate::fatigue::stress::PipeSection>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -348,6 +350,16 @@ impl Envelopes {
     /// Empty envelopes for a line of elements with bending stiffnesses `ei` (N·m², one per element:
     /// the nodes are one more), with the pipe's section if it is known.
     pub fn new(ei: &[f64], section: Option<crate::fatigue::stress::PipeSection>) -> Self {
+        Self::with_sections(ei, section, Vec::new())
+    }
+
+    /// [`Envelopes::new`] for a line of sections: each node's section in `node_sections` (empty:
+    /// `section` at every node).
+    pub fn with_sections(
+        ei: &[f64],
+        section: Option<crate::fatigue::stress::PipeSection>,
+        node_sections: Vec<crate::fatigue::stress::PipeSection>,
+    ) -> Self {
         let n = ei.len() + 1;
         let inv_ei = (0..n)
             .map(|i| {
@@ -375,6 +387,7 @@ impl Envelopes {
                 vec![0.0; if section.is_some() { n } else { 0 }]
             }),
             section,
+            node_sections,
         }
     }
 
@@ -424,6 +437,7 @@ impl Envelopes {
             let outer = crate::fatigue::stress::Fibre::Outer;
             let [w, t, b] = &mut self.section_scratch;
             for i in 0..s.moment.len() {
+                let sec = self.node_sections.get(i).unwrap_or(sec);
                 let (te, z) = (s.tension[i], s.z[i]);
                 w[i] = te + sec.wall_minus_effective(z);
                 (t[i], b[i]) = sec.fibre_stresses(outer, te, s.moment[i], z);

@@ -59,7 +59,11 @@ pub const BUILTINS: &[Registration] = &[
         name: "envelopes",
         build: |s| {
             let ei: Vec<f64> = s.model.line.elements.iter().map(|e| e.section.ei).collect();
-            Some(Box::new(Envelopes::new(&ei, s.spec.section)))
+            Some(Box::new(Envelopes::with_sections(
+                &ei,
+                s.spec.section,
+                s.spec.node_sections.clone(),
+            )))
         },
     },
     Registration {

@@ -674,6 +674,11 @@ mod assembly_tests {
             weight: 1010.0,
             mass: 145.0,
             od: 0.2286,
+            hydro_od: 0.2286,
+            contact_od: 0.2286,
+            coefficients: None,
+            kind: 0,
+            wall: None,
         };
         let model = LineModel::build(&LineSpec {
             segments: vec![seg(40.0, 4.0), seg(13.0, 1.0)],

@@ -718,8 +718,10 @@ fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
     if let Some(h) = &dm.environment.hydro {
         loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
         let [cos, sin] = &ws.loads.node_tangent;
+        let hc = h.coefficients();
         for (i, m) in ws.mass.iter_mut().enumerate() {
-            let ma = h.added_mass(model.node_od[i], model.tributary[i]);
+            let c = model.node_coefficients.get(i).unwrap_or(&hc);
+            let ma = h.added_mass(c, model.node_hydro_od[i], model.tributary[i]);
             let (tx, ty) = (cos[i], sin[i]);
             m[0] += ma * (1.0 - tx * tx);
             m[1] += -ma * tx * ty;

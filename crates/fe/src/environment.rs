@@ -53,6 +53,18 @@ pub struct Hydro {
     pub current: Vec<(f64, f64)>,
 }
 
+/// A line type's own Morison coefficients (a line section's `cd_normal`, `cd_axial`, `ca_normal`,
+/// overriding [`Hydro`]'s).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Coefficients {
+    /// Normal drag coefficient.
+    pub cd_normal: f64,
+    /// Axial drag coefficient (on the area πD per length).
+    pub cd_axial: f64,
+    /// Normal added-mass coefficient.
+    pub ca_normal: f64,
+}
+
 /// The drag on one node and, if asked for, its velocity derivative.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct NodeDrag {
@@ -63,6 +75,15 @@ pub struct NodeDrag {
 }
 
 impl Hydro {
+    /// The sea's own coefficients (a node without a line type's own uses these).
+    pub fn coefficients(&self) -> Coefficients {
+        Coefficients {
+            cd_normal: self.cd_normal,
+            cd_axial: self.cd_axial,
+            ca_normal: self.ca_normal,
+        }
+    }
+
     /// The current speed (along +x) at height z, m/s.
     pub fn current_at(&self, z: f64) -> f64 {
         let c = &self.current;
@@ -84,19 +105,20 @@ impl Hydro {
         }
     }
 
-    /// The normal added mass of a length `l` of pipe of diameter `d`, kg.
+    /// The normal added mass of a length `l` of pipe of diameter `d` with the coefficients `c`, kg.
     #[inline]
-    pub fn added_mass(&self, d: f64, l: f64) -> f64 {
-        self.ca_normal * self.water_density * std::f64::consts::PI * d * d / 4.0 * l
+    pub fn added_mass(&self, c: &Coefficients, d: f64, l: f64) -> f64 {
+        c.ca_normal * self.water_density * std::f64::consts::PI * d * d / 4.0 * l
     }
 
-    /// The Morison drag on a node of diameter `d` and tributary length `l`, at height `z`, with the
-    /// tangent `(tx, tz)`, the velocity `(vx, vz)` and the wave particle velocity `wave` (if any);
-    /// with `with_c`, also the damping block.
+    /// The Morison drag with the coefficients `c` on a node of diameter `d` and tributary length
+    /// `l`, at height `z`, with the tangent `(tx, tz)`, the velocity `(vx, vz)` and the wave
+    /// particle velocity `wave` (if any); with `with_c`, also the damping block.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn drag(
         &self,
+        c: &Coefficients,
         d: f64,
         l: f64,
         (tx, tz): (f64, f64),
@@ -105,8 +127,8 @@ impl Hydro {
         wave: Option<[f64; 2]>,
         with_c: bool,
     ) -> NodeDrag {
-        let kn0 = 0.5 * self.water_density * self.cd_normal;
-        let ka0 = 0.5 * self.water_density * self.cd_axial * std::f64::consts::PI;
+        let kn0 = 0.5 * self.water_density * c.cd_normal;
+        let ka0 = 0.5 * self.water_density * c.cd_axial * std::f64::consts::PI;
         let (rx, rz) = match wave {
             None => (self.current_at(z) - vx, -vz),
             Some([wx, wz]) => (self.current_at(z) + wx - vx, wz - vz),
@@ -137,12 +159,20 @@ impl Hydro {
 }
 
 impl Hydro {
-    /// The wave inertia force on a node of diameter `d` and tributary length `l` with the tangent
-    /// `(tx, tz)`, from the water's acceleration `acc` (see the module docs), N.
+    /// The wave inertia force with the coefficients `c` on a node of diameter `d` and tributary
+    /// length `l` with the tangent `(tx, tz)`, from the water's acceleration `acc` (see the module
+    /// docs), N.
     #[inline]
-    pub fn wave_inertia(&self, d: f64, l: f64, (tx, tz): (f64, f64), acc: [f64; 2]) -> [f64; 2] {
+    pub fn wave_inertia(
+        &self,
+        c: &Coefficients,
+        d: f64,
+        l: f64,
+        (tx, tz): (f64, f64),
+        acc: [f64; 2],
+    ) -> [f64; 2] {
         let fk = self.water_density * std::f64::consts::PI * d * d / 4.0 * l;
-        let c = fk * (1.0 + self.ca_normal);
+        let c = fk * (1.0 + c.ca_normal);
         let s = acc[0] * tx + acc[1] * tz;
         [
             c * (acc[0] - s * tx) + fk * s * tx,

@@ -20,7 +20,9 @@
 //! - [`dynamics`]: the time stepping (Newton in each step, step cutting) on a
 //!   [`dynamics::DynamicModel`];
 //! - [`analytical`]: closed-form solutions (catenaries, the touchdown boundary layer, the elastica),
-//!   used to seed solves and to test them.
+//!   used to seed solves and to test them;
+//! - [`sectioned`]: the catenary of a line of sections (weights that change along it, a lazy wave), the
+//!   static seed of such a line.
 
 pub mod analytical;
 pub mod assembly;
@@ -34,6 +36,7 @@ pub mod loads;
 pub mod model;
 pub mod motion;
 pub mod newton;
+pub mod sectioned;
 pub mod sparse;
 pub mod statics;
 pub mod vessel;

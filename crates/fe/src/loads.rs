@@ -449,12 +449,16 @@ fn add_hydrodynamics(
     // are two long dependency chains, and in one loop too few nodes fit in the processor's
     // window to overlap them.
     node_tangents(&pl.base, u, node_tangent);
+    let hc = h.coefficients();
     for i in 0..model.nodes() {
+        // A line type's own coefficients, where the line has any (else the sea's).
+        let c = model.node_coefficients.get(i).unwrap_or(&hc);
         let (tx, ty) = (node_tangent[0][i], node_tangent[1][i]);
         let z = pl.base[3 * i + 1] + u[3 * i + 1];
         let kin = at.wave_kin.get(i).copied().flatten();
         let d = h.drag(
-            model.node_od[i],
+            c,
+            model.node_hydro_od[i],
             model.tributary[i],
             (tx, ty),
             z,
@@ -466,7 +470,8 @@ fn add_hydrodynamics(
         asm.residual[3 * i + 1] -= d.force[1];
         if let Some(k) = kin {
             let f = h.wave_inertia(
-                model.node_od[i],
+                c,
+                model.node_hydro_od[i],
                 model.tributary[i],
                 (tx, ty),
                 k.acceleration,
@@ -519,6 +524,11 @@ mod tests {
                 weight: 500.0,
                 mass: 100.0,
                 od: 0.3,
+                hydro_od: 0.3,
+                contact_od: 0.3,
+                coefficients: None,
+                kind: 0,
+                wall: None,
             }],
             top: Support::Pinned,
             anchor: Support::Free,

@@ -11,10 +11,19 @@
 //! - seabed reaction at the nodes over their tributary length `(L0_left + L0_right)/2`, from the
 //!   penetration of the pipe invert `z_pen = z_mudline − (z − D/2)` (positive down);
 //! - flexjoint: a rotational spring `M = −k_θ (θ − θ_neutral)` at one node.
+//!
+//! **Sections.** Each element carries its own properties (stiffness, weight, mass, the steel outer
+//! diameter, the hydrodynamic and contact diameters, optionally its own Morison coefficients, and
+//! the index of its line type). A node's contact and hydrodynamic diameters and coefficients are
+//! the means of its two elements' (an end node's: its one element's); its weight, mass and
+//! tributary length are the sums of its elements' halves. A uniform line is one segment; a line of
+//! sections is several, a tapered section one segment per element (each with the taper's
+//! properties at the element's middle).
 
 use catena_seabed::law::Seabed;
 
 use crate::beam::Section;
+use crate::environment::Coefficients;
 
 /// A length of line with one cross-section and one element length.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,8 +38,45 @@ pub struct Segment {
     pub weight: f64,
     /// Structural mass per unit length (steel and contents), kg/m.
     pub mass: f64,
-    /// Outer (contact and hydrodynamic) diameter, m.
+    /// Outer diameter of the steel, m (stress, rotary inertia).
     pub od: f64,
+    /// Hydrodynamic diameter, m: drag and added mass (a coating's, or buoyancy modules' smeared).
+    pub hydro_od: f64,
+    /// Seabed contact diameter, m.
+    pub contact_od: f64,
+    /// The segment's own Morison coefficients, if its line type has them (else the sea's).
+    pub coefficients: Option<Coefficients>,
+    /// The index of its line type (0 for a uniform line): outputs name sections by it.
+    pub kind: usize,
+    /// The steel wall's thickness, m, if known (stress recovery reads it; the stiffness is given).
+    pub wall: Option<f64>,
+}
+
+impl Segment {
+    /// A segment of one pipe whose three diameters are its outer diameter `od`, with the sea's
+    /// coefficients, line type 0.
+    pub fn uniform(
+        length: f64,
+        element_length: f64,
+        section: Section,
+        weight: f64,
+        mass: f64,
+        od: f64,
+    ) -> Self {
+        Self {
+            length,
+            element_length,
+            section,
+            weight,
+            mass,
+            od,
+            hydro_od: od,
+            contact_od: od,
+            coefficients: None,
+            kind: 0,
+            wall: None,
+        }
+    }
 }
 
 /// How an end of the line is held.
@@ -55,8 +101,18 @@ pub struct Element {
     pub weight: f64,
     /// Mass, kg/m.
     pub mass: f64,
-    /// Outer diameter, m.
+    /// Outer diameter of the steel, m.
     pub od: f64,
+    /// Hydrodynamic diameter, m.
+    pub hydro_od: f64,
+    /// Seabed contact diameter, m.
+    pub contact_od: f64,
+    /// Its own Morison coefficients, if any.
+    pub coefficients: Option<Coefficients>,
+    /// Its line type's index.
+    pub kind: usize,
+    /// Its steel wall's thickness, m, if known.
+    pub wall: Option<f64>,
 }
 
 /// The seabed under the line: a flat mudline at `z = mudline_z` and the contact law.
@@ -163,8 +219,13 @@ pub struct LineModel {
     pub elements: Vec<Element>,
     /// Tributary (unstretched) length of each node, m.
     pub tributary: Vec<f64>,
-    /// Contact diameter of each node (mean of the adjacent elements' ODs), m.
+    /// Contact diameter of each node (mean of the adjacent elements' contact diameters), m.
     pub node_od: Vec<f64>,
+    /// Hydrodynamic diameter of each node (mean of the adjacent elements'), m.
+    pub node_hydro_od: Vec<f64>,
+    /// Each node's Morison coefficients, when a line type has its own
+    /// ([`LineModel::with_sea_coefficients`]); empty: the sea's everywhere.
+    pub node_coefficients: Vec<Coefficients>,
     /// For each global dof, its equation number, or `None` if prescribed.
     pub equation: Vec<Option<usize>>,
     /// Number of equations (free dofs).
@@ -181,9 +242,13 @@ pub struct LineModel {
     pub attachments: Vec<Attachment>,
     /// Zones of other soil along the route ([`LineModel::with_seabed_zones`]).
     pub seabed_zones: Vec<SeabedZone>,
-    /// Each node's seabed law, when zones were assigned to nodes ([`LineModel::zoned_at`]);
-    /// empty: every node has the default law.
+    /// Each node's seabed law, when zones or contact diameters other than the default's were
+    /// assigned to nodes ([`LineModel::zoned_at`]); empty: every node has the default law.
     pub node_seabed: Vec<Seabed>,
+    /// The laws for contact diameters other than the default law's: `(D, default, zones)`, the
+    /// default and each zone's law (in the order of `seabed_zones`) built for a pipe of diameter
+    /// `D` ([`LineModel::with_diameter_laws`]).
+    pub diameter_laws: Vec<(f64, Seabed, Vec<Seabed>)>,
     /// The mudline's height at horizontal positions, `(x, z)` with x increasing, piecewise linear
     /// and constant beyond the ends ([`LineModel::with_mudline_profile`]); empty: flat at the seabed's
     /// `mudline_z`.
@@ -208,9 +273,13 @@ impl LineModel {
             if !(seg.section.ea > 0.0 && seg.section.ei > 0.0) {
                 return bad("EA and EI must be > 0");
             }
-            let ok = seg.weight.is_finite() && seg.mass >= 0.0 && seg.od > 0.0;
+            let ok = seg.weight.is_finite()
+                && seg.mass >= 0.0
+                && seg.od > 0.0
+                && seg.hydro_od > 0.0
+                && seg.contact_od > 0.0;
             if !ok {
-                return bad("weight must be finite, mass >= 0 and OD > 0");
+                return bad("weight must be finite, mass >= 0 and the diameters > 0");
             }
             let n = (seg.length / seg.element_length).ceil().max(1.0) as usize;
             let l0 = seg.length / n as f64;
@@ -221,6 +290,11 @@ impl LineModel {
                     weight: seg.weight,
                     mass: seg.mass,
                     od: seg.od,
+                    hydro_od: seg.hydro_od,
+                    contact_od: seg.contact_od,
+                    coefficients: seg.coefficients,
+                    kind: seg.kind,
+                    wall: seg.wall,
                 });
             }
         }
@@ -228,18 +302,23 @@ impl LineModel {
         let mut arc = vec![0.0; nn];
         let mut tributary = vec![0.0; nn];
         let mut node_od = vec![0.0; nn];
+        let mut node_hydro_od = vec![0.0; nn];
         let mut dead_load = vec![0.0; 3 * nn];
         for (e, el) in elements.iter().enumerate() {
             arc[e + 1] = arc[e] + el.l0;
             tributary[e] += 0.5 * el.l0;
             tributary[e + 1] += 0.5 * el.l0;
-            node_od[e] += 0.5 * el.od;
-            node_od[e + 1] += 0.5 * el.od;
+            node_od[e] += 0.5 * el.contact_od;
+            node_od[e + 1] += 0.5 * el.contact_od;
+            node_hydro_od[e] += 0.5 * el.hydro_od;
+            node_hydro_od[e + 1] += 0.5 * el.hydro_od;
             dead_load[3 * e + 1] -= 0.5 * el.weight * el.l0;
             dead_load[3 * (e + 1) + 1] -= 0.5 * el.weight * el.l0;
         }
-        node_od[0] = elements[0].od;
-        node_od[nn - 1] = elements[nn - 2].od;
+        node_od[0] = elements[0].contact_od;
+        node_od[nn - 1] = elements[nn - 2].contact_od;
+        node_hydro_od[0] = elements[0].hydro_od;
+        node_hydro_od[nn - 1] = elements[nn - 2].hydro_od;
         let mut fixed = vec![false; 3 * nn];
         for (node, sup) in [(0, spec.top), (nn - 1, spec.anchor)] {
             if sup != Support::Free {
@@ -263,6 +342,8 @@ impl LineModel {
             elements,
             tributary,
             node_od,
+            node_hydro_od,
+            node_coefficients: Vec::new(),
             equation,
             n_eq,
             dead_load,
@@ -276,8 +357,54 @@ impl LineModel {
             attachments: Vec::new(),
             seabed_zones: Vec::new(),
             node_seabed: Vec::new(),
+            diameter_laws: Vec::new(),
             mudline_profile: Vec::new(),
         })
+    }
+
+    /// The Model with each node's Morison coefficients, where a line type has its own: the mean of
+    /// its two elements' (their own, else the sea's `sea`). Unchanged when no element has its own.
+    pub fn with_sea_coefficients(mut self, sea: Coefficients) -> Self {
+        if self.elements.iter().all(|e| e.coefficients.is_none()) {
+            return self;
+        }
+        let nn = self.nodes();
+        let of = |e: usize| self.elements[e].coefficients.unwrap_or(sea);
+        let mean = |a: Coefficients, b: Coefficients| Coefficients {
+            cd_normal: 0.5 * (a.cd_normal + b.cd_normal),
+            cd_axial: 0.5 * (a.cd_axial + b.cd_axial),
+            ca_normal: 0.5 * (a.ca_normal + b.ca_normal),
+        };
+        self.node_coefficients = (0..nn)
+            .map(|i| match i {
+                0 => of(0),
+                i if i == nn - 1 => of(nn - 2),
+                i => mean(of(i - 1), of(i)),
+            })
+            .collect();
+        self
+    }
+
+    /// The Model with the seabed laws for other contact diameters (see
+    /// [`LineModel::diameter_laws`]).
+    pub fn with_diameter_laws(mut self, laws: Vec<(f64, Seabed, Vec<Seabed>)>) -> Self {
+        self.diameter_laws = laws;
+        self
+    }
+
+    /// The arc lengths from the top where the line type changes, m (empty for one type).
+    pub fn section_boundaries(&self) -> Vec<f64> {
+        self.elements
+            .windows(2)
+            .enumerate()
+            .filter(|(_, w)| w[0].kind != w[1].kind)
+            .map(|(e, _)| self.arc[e + 1])
+            .collect()
+    }
+
+    /// Node `i`'s line type: its element's below it (the anchor's: its element's above it).
+    pub fn node_kind(&self, i: usize) -> usize {
+        self.elements[i.min(self.elements.len() - 1)].kind
     }
 
     /// The Model on a mudline of the given profile (see [`LineModel::mudline_profile`]).
@@ -315,15 +442,36 @@ impl LineModel {
 
     /// The Model with each node's seabed law: the zone under the node's x in the configuration `q`
     /// (3 per node; the statics' base configuration), else the default. Unchanged without zones.
+    ///
+    /// With laws for other contact diameters ([`LineModel::diameter_laws`]), a node of such a
+    /// diameter takes that diameter's law (its zone's, or its default).
     pub fn zoned_at(mut self, q: &[f64]) -> Self {
-        if self.seabed_zones.is_empty() {
+        if self.seabed_zones.is_empty() && self.diameter_laws.is_empty() {
             return self;
         }
         let Some(sb) = self.seabed else { return self };
         self.node_seabed = (0..self.nodes())
-            .map(|i| *self.seabed_law_at_x(q[3 * i]).unwrap_or(&sb.seabed))
+            .map(|i| {
+                *self
+                    .seabed_law_for(q[3 * i], self.node_od[i])
+                    .unwrap_or(&sb.seabed)
+            })
             .collect();
         self
+    }
+
+    /// The seabed law at the horizontal position `x` for a pipe of contact diameter `d`: its
+    /// zone's (for that diameter, if the Model has laws for it), else the default.
+    pub fn seabed_law_for(&self, x: f64, d: f64) -> Option<&Seabed> {
+        let sb = self.seabed.as_ref()?;
+        let zone = self
+            .seabed_zones
+            .iter()
+            .position(|z| z.from_x <= x && x < z.to_x);
+        match self.diameter_laws.iter().find(|(dd, _, _)| *dd == d) {
+            Some((_, default, zones)) => Some(zone.map_or(default, |k| &zones[k])),
+            None => Some(zone.map_or(&sb.seabed, |k| &self.seabed_zones[k].seabed)),
+        }
     }
 
     /// Node `i`'s seabed law (`None` without a seabed).
@@ -331,18 +479,6 @@ impl LineModel {
     pub fn seabed_law(&self, i: usize) -> Option<&Seabed> {
         let sb = self.seabed.as_ref()?;
         Some(self.node_seabed.get(i).unwrap_or(&sb.seabed))
-    }
-
-    /// The seabed law at the horizontal position `x`: its zone's, else the default (`None` without
-    /// a seabed).
-    pub fn seabed_law_at_x(&self, x: f64) -> Option<&Seabed> {
-        let sb = self.seabed.as_ref()?;
-        Some(
-            self.seabed_zones
-                .iter()
-                .find(|z| z.from_x <= x && x < z.to_x)
-                .map_or(&sb.seabed, |z| &z.seabed),
-        )
     }
 
     /// The Model with bodies attached: each `(arc, attachment)` at the node nearest to its arc

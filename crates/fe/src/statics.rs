@@ -440,9 +440,18 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
     let (xa, za) = ends.anchor;
     let span = xt - xa;
     let w = model.mean_weight();
+    let uniform = model
+        .elements
+        .iter()
+        .all(|e| e.weight == model.elements[0].weight);
     // The seed's seabed is flat at the mudline under the anchor (a profile's nodes are draped onto
-    // it below).
-    let emb = static_embedment(model, w).unwrap_or(0.0);
+    // it below), the pipe there at the static embedment of its own weight.
+    let w_anchor = if uniform {
+        w
+    } else {
+        model.elements[n - 2].weight
+    };
+    let emb = static_embedment(model, w_anchor).unwrap_or(0.0);
     let contact = model
         .seabed
         .as_ref()
@@ -463,6 +472,23 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
             c.a,
         ))
     };
+    // A line whose weight changes along it (sections): the catenary of its sections, if the
+    // anchor lies on the seabed and one exists; else the mean weight's below.
+    if let (Some(zc), false) = (contact, uniform) {
+        if (za - zc).abs() <= 1e-9 * zc.abs().max(1.0) {
+            if let Some((mut q, _, _)) = crate::sectioned::seed(model, ends.top, (xa, zc)) {
+                drape(model, &mut q, zc, emb);
+                q[0] = xt;
+                q[1] = zt;
+                return Ok(q);
+            }
+        }
+    }
+    if w.is_nan() || w <= 0.0 {
+        return Err(StaticError::Seed(CatenaryError::Invalid(
+            "the line is net buoyant on the whole and has no catenary of its sections between its ends",
+        )));
+    }
     let mut length = model.length();
     let mut arcs = model.arc.clone();
     let mut shape = shape_for(length)?;
@@ -489,23 +515,30 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
         };
         q[3 * i + 2] = th;
     }
-    if let (Some(zc), false) = (contact, model.mudline_profile.is_empty()) {
-        // On a profile: the nodes the seed lays on its flat seabed follow the mudline, at the same
-        // embedment normal to it, turned by its slope.
-        for i in 0..n {
-            if (q[3 * i + 1] - zc).abs() <= 1e-9 * zc.abs().max(1.0) {
-                let (zm, m) = model.mudline_at(q[3 * i]);
-                let c = 1.0 / (1.0 + m * m).sqrt();
-                q[3 * i + 1] = zm + (0.5 * model.node_od[i] - emb) / c;
-                q[3 * i + 2] += m.atan();
-            }
-        }
+    if let Some(zc) = contact {
+        drape(model, &mut q, zc, emb);
     }
     q[0] = xt;
     q[1] = zt;
     q[3 * (n - 1)] = xa;
     q[3 * (n - 1) + 1] = za;
     Ok(q)
+}
+
+/// On a profile: the nodes a seed lays on its flat seabed at `zc` follow the mudline, at the same
+/// embedment `emb` normal to it, turned by its slope. Nothing on a flat seabed.
+fn drape(model: &LineModel, q: &mut [f64], zc: f64, emb: f64) {
+    if model.mudline_profile.is_empty() {
+        return;
+    }
+    for i in 0..model.nodes() {
+        if (q[3 * i + 1] - zc).abs() <= 1e-9 * zc.abs().max(1.0) {
+            let (zm, m) = model.mudline_at(q[3 * i]);
+            let c = 1.0 / (1.0 + m * m).sqrt();
+            q[3 * i + 1] = zm + (0.5 * model.node_od[i] - emb) / c;
+            q[3 * i + 2] += m.atan();
+        }
+    }
 }
 
 /// Nodal results at `u` (see [`Assembler::fill_results`]), with the loads of the last solve (the

@@ -28,6 +28,11 @@ fn segment(length: f64, n: usize, ea: f64, ei: f64, mass: f64, weight: f64, od: 
         weight,
         mass,
         od,
+        hydro_od: od,
+        contact_od: od,
+        coefficients: None,
+        kind: 0,
+        wall: None,
     }
 }
 

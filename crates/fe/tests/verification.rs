@@ -31,6 +31,11 @@ fn scr(seabed: Seabed, ea: f64, ei: f64, tdz_element: f64) -> LineModel {
         weight: W,
         mass: 144.8,
         od: OD,
+        hydro_od: OD,
+        contact_od: OD,
+        coefficients: None,
+        kind: 0,
+        wall: None,
     };
     LineModel::build(&LineSpec {
         segments: vec![seg(1050.0, 5.0), seg(300.0, tdz_element), seg(250.0, 5.0)],
@@ -226,6 +231,11 @@ fn cantilever(n: usize, l: f64, ei: f64) -> LineModel {
             weight: 0.0,
             mass: 0.0,
             od: 0.1,
+            hydro_od: 0.1,
+            contact_od: 0.1,
+            coefficients: None,
+            kind: 0,
+            wall: None,
         }],
         top: Support::Fixed,
         anchor: Support::Free,

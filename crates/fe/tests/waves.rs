@@ -413,7 +413,7 @@ fn wave_inertia_is_froude_krylov_plus_normal_added_mass() {
     let rho_a_l = 1025.0 * std::f64::consts::PI * 0.01 * 3.0; // ρ πD²/4 L = 96.604 kg
     let s = acc[0] * t.0 + acc[1] * t.1;
     let normal = [acc[0] - s * t.0, acc[1] - s * t.1];
-    let f = h.wave_inertia(d, l, t, acc);
+    let f = h.wave_inertia(&h.coefficients(), d, l, t, acc);
     for k in 0..2 {
         let tk = if k == 0 { t.0 } else { t.1 };
         let want = rho_a_l * (2.0 * normal[k] + s * tk);
@@ -424,8 +424,8 @@ fn wave_inertia_is_froude_krylov_plus_normal_added_mass() {
         );
     }
     // A purely axial acceleration meets the displaced mass alone, a purely normal one (1 + Ca) times it.
-    let along = h.wave_inertia(d, l, (1.0, 0.0), [1.0, 0.0]);
-    let across = h.wave_inertia(d, l, (1.0, 0.0), [0.0, 1.0]);
+    let along = h.wave_inertia(&h.coefficients(), d, l, (1.0, 0.0), [1.0, 0.0]);
+    let across = h.wave_inertia(&h.coefficients(), d, l, (1.0, 0.0), [0.0, 1.0]);
     assert!((along[0] - rho_a_l).abs() < 1e-9 && along[1] == 0.0);
     assert!((across[1] - 2.0 * rho_a_l).abs() < 1e-9 && across[0] == 0.0);
 }

@@ -5,6 +5,9 @@
 //!   `/static/effective_tension` (N), `/static/bending_moment` (N·m, negative = sag),
 //!   `/static/penetration` (m, positive down, ≤ 0 clear), `/static/seabed_force` (N/m), one value per
 //!   node, node 0 at the top; each dataset has a `units` attribute;
+//! - `/line/section` (each node's line type, an index into the attribute `names`, comma-separated),
+//!   `/line/od`, `/line/wall` (NaN if not given), `/line/hydrodynamic_od`, `/line/contact_od` (m),
+//!   one value per node;
 //! - `/dynamic/time`, `/dynamic/top_x`, `/dynamic/top_z`, `/dynamic/top_tension`,
 //!   `/dynamic/touchdown_arc` (n_t); `/dynamic/arc` (n_nodes); the conventions as attributes of
 //!   `/dynamic`; each gauge group's arc length as its attribute `arc`;
@@ -109,6 +112,34 @@ pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result
         if name != "arc" {
             dims.push((format!("static/{name}"), vec![Some("static/arc")]));
         }
+    }
+    // What each node is made of (`/line`): its section's type and its diameters and wall.
+    let l = f.create_group("line").map_err(&err)?;
+    let p = catena::scene::sections::node_properties(&run.model);
+    let kind: Vec<u32> = p.kind.iter().map(|&k| k as u32).collect();
+    let ds = l
+        .new_dataset_builder()
+        .with_data(&kind)
+        .create("section")
+        .map_err(&err)?;
+    attr(&ds, "units", "1").map_err(&err)?;
+    attr(&ds, "names", &run.scene.line_type_names().join(",")).map_err(&err)?;
+    attr(
+        &ds,
+        "description",
+        "each node's line type, an index into the comma-separated names (at a change of section, the weaker element's)",
+    )
+    .map_err(&err)?;
+    for (name, data) in [
+        ("od", &p.od),
+        ("wall", &p.wall),
+        ("hydrodynamic_od", &p.hydrodynamic_od),
+        ("contact_od", &p.contact_od),
+    ] {
+        vector(&l, name, data, "m").map_err(&err)?;
+    }
+    for name in ["section", "od", "wall", "hydrodynamic_od", "contact_od"] {
+        dims.push((format!("line/{name}"), vec![Some("static/arc")]));
     }
     dimension_scales(f, &dims).map_err(&err)?;
     f.flush().map_err(&err)?;

@@ -416,16 +416,17 @@ fn lines_panel<DB: DrawingBackend>(
             let b = y0 + (y1 - y0) * (k + 1) as f64 / n as f64;
             PathElement::new(vec![(x, a), (x, b)], c.stroke_width(2))
         });
-        chart
-            .draw_series(dash)
-            .map_err(|e| e.to_string())?
-            .label(label)
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 8, y), (x + 12, y), (x + 20, y)],
-                    c.stroke_width(2),
-                )
-            });
+        let drawn = chart.draw_series(dash).map_err(|e| e.to_string())?;
+        if label.is_empty() {
+            // A repeated marker (the second section boundary on): drawn, not listed again.
+            continue;
+        }
+        drawn.label(label).legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + 8, y), (x + 12, y), (x + 20, y)],
+                c.stroke_width(2),
+            )
+        });
     }
     if legend {
         chart
@@ -585,10 +586,11 @@ pub fn static_line(
     )
     .map_err(&perr)?;
     let tdp = catena_fe::statics::touchdown_arc(arc, &r.penetration);
-    let markers: Vec<Marker> = tdp
+    let mut markers: Vec<Marker> = tdp
         .map(|a| (a, "touchdown point", RGBColor(20, 140, 60)))
         .into_iter()
         .collect();
+    markers.extend(section_marks(model));
     let zoom = tdp.map(|a| (a - 30.0, a + 30.0));
     let xs = "arc length from the top (m)";
     let one = |points, colour, label| {
@@ -661,6 +663,30 @@ pub fn static_line(
 /// A vertical marker: `(x, label, colour)`.
 type Marker = (f64, &'static str, RGBColor);
 
+/// The markers of a whole-line panel: the static touchdown point (the first) and the section
+/// boundaries (the touchdown zone's other markers crowd only the zoomed panels).
+fn whole_line_marks(markers: &[Marker]) -> Vec<Marker> {
+    markers
+        .iter()
+        .enumerate()
+        .filter(|(k, m)| *k == 0 || m.1 == "section boundary" || m.1.is_empty())
+        .map(|(_, m)| *m)
+        .collect()
+}
+
+/// The boundaries between a line's sections (none for one type), grey, the first labelled.
+fn section_marks(model: &catena_fe::model::LineModel) -> Vec<Marker> {
+    model
+        .section_boundaries()
+        .into_iter()
+        .enumerate()
+        .map(|(k, a)| {
+            let label = if k == 0 { "section boundary" } else { "" };
+            (a, label, RGBColor(130, 130, 130))
+        })
+        .collect()
+}
+
 /// The touchdown point's markers — static, and the least and greatest arc length it reached — and
 /// the zoom on the zone it visits, with a margin of half its width or 20 m (±30 m about the static
 /// point if it never touched down in the window).
@@ -689,6 +715,7 @@ fn touchdown_marks(r: &DynamicRun) -> (Vec<Marker>, Option<(f64, f64)>) {
     } else {
         None
     };
+    markers.extend(section_marks(&r.model.line));
     (markers, zoom)
 }
 
@@ -723,7 +750,12 @@ pub fn ranges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         ("mean", dark, false),
         ("least", red, false),
     ];
-    entries.extend(markers.iter().map(|(_, l, c)| (*l, *c, true)));
+    entries.extend(
+        markers
+            .iter()
+            .filter(|(_, l, _)| !l.is_empty())
+            .map(|(_, l, c)| (*l, *c, true)),
+    );
     legend_strip(&strip, &entries).map_err(&perr)?;
     let od = r.model.line.node_od[r.model.line.nodes() - 1];
     let xs = "arc length from the top (m)";
@@ -787,7 +819,7 @@ pub fn ranges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             caption,
             (xs, axis),
             &series,
-            &markers[..1],
+            &whole_line_marks(&markers),
             None,
             false,
         )
@@ -854,7 +886,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "bending moment envelope",
         (xs, "M (kN·m), negative = sag"),
         &moments(),
-        &markers[..1],
+        &whole_line_marks(&markers),
         None,
     )
     .map_err(&perr)?;
@@ -872,7 +904,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         "bending moment range (max − min)",
         (xs, "ΔM (kN·m)"),
         &[lab(line(&e.moment.range(), 1e-3), red, "range")],
-        &markers[..1],
+        &whole_line_marks(&markers),
         None,
     )
     .map_err(&perr)?;
@@ -907,7 +939,7 @@ pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
             lab(line(&e.tension.min, 1e-3), red, "minimum"),
             lab(line(&r.statics.results.tension, 1e-3), grey, "static"),
         ],
-        &markers[..1],
+        &whole_line_marks(&markers),
         None,
     )
     .map_err(&perr)?;

@@ -112,7 +112,13 @@ pub fn static_json(run: &StaticRun) -> serde_json::Value {
             "step_cuts": run.report.cuts,
             "relative_residual": run.report.residual,
             "wall_seconds": run.wall_seconds,
-        }
+        },
+        "sections": run
+            .scene
+            .sections()
+            .iter()
+            .map(|(t, from, to)| json!({ "type": t, "from": from, "to": to }))
+            .collect::<Vec<_>>(),
     })
 }
 

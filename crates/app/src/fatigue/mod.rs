@@ -28,4 +28,7 @@ pub struct FatigueSpec {
     pub start: f64,
     /// The pipe.
     pub section: PipeSection,
+    /// A line of sections: each node's section, S-N curve and SCF (its line type's, else the
+    /// table's); empty: `section`, `curve` and `scf` at every node.
+    pub nodes: Vec<(PipeSection, SnCurve, f64)>,
 }

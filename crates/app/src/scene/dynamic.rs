@@ -48,6 +48,9 @@ pub struct DynamicSpec {
     /// The pipe's section for wall tension and stress range graphs: `[fatigue]`'s, or from
     /// `line.wall` and `line.contents_density` (no internal pressure) when both are given.
     pub section: Option<PipeSection>,
+    /// A line of sections: each node's pipe section (see `scene::sections::node_sections`); empty:
+    /// `section` at every node.
+    pub node_sections: Vec<PipeSection>,
     /// Duration, s.
     pub duration: f64,
     /// Time step, s.
@@ -149,6 +152,7 @@ pub(super) fn dynamic_spec(
     Ok(DynamicSpec {
         fatigue,
         section,
+        node_sections: Vec::new(),
         structural_damping,
         environment: Environment {
             hydro,
@@ -423,6 +427,59 @@ fn structural_damping_of(file: &str, raw: &RiserFile) -> Result<Option<f64>, Sce
     })
 }
 
+/// An S-N curve as written at `key` (a DNV-RP-C203 name or a table) → the curve and its name.
+pub(super) fn sn_curve_of(
+    file: &str,
+    key: &str,
+    sn: &SnKey,
+) -> Result<(SnCurve, String), SceneError> {
+    Ok(match sn {
+        SnKey::Name(n) => (
+            SnCurve::dnv(n).ok_or_else(|| {
+                invalid(
+                    file,
+                    key,
+                    format!(
+                        "one of {} or a table {{ m1, log_a1, m2, log_a2, knee_cycles }}, got \"{n}\"",
+                        crate::fatigue::sn::NAMES.join(", ")
+                    ),
+                )
+            })?,
+            n.clone(),
+        ),
+        SnKey::Table(c) => {
+            for (k, v) in [("m1", c.m1), ("log_a1", c.log_a1)] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(invalid(file, format!("{key}.{k}"), "a number > 0"));
+                }
+            }
+            let lower = match (c.m2, c.log_a2, c.knee_cycles) {
+                (Some(m2), Some(a2), Some(knee)) if m2 > 0.0 && a2 > 0.0 && knee > 0.0 => {
+                    Some((m2, a2, knee))
+                }
+                (None, None, None) => None,
+                _ => {
+                    return Err(invalid(
+                        file,
+                        key,
+                        "m2, log_a2 and knee_cycles all > 0, or none of them (a single slope)",
+                    ))
+                }
+            };
+            (
+                SnCurve {
+                    m1: c.m1,
+                    log_a1: c.log_a1,
+                    lower: lower.map(|(m2, a2, _)| (m2, a2)),
+                    knee_cycles: lower.map(|(_, _, k)| k),
+                    thickness_exponent: c.thickness_exponent,
+                },
+                "user".to_string(),
+            )
+        }
+    })
+}
+
 /// `[fatigue]` → what the fatigue observer counts (see `docs/scene.md`).
 fn fatigue_of(
     file: &str,
@@ -439,51 +496,7 @@ fn fatigue_of(
             "the wall thickness in m (fatigue needs the section's stresses)",
         )
     })?;
-    let (curve, curve_name) = match &t.sn_curve {
-        SnKey::Name(n) => (
-            SnCurve::dnv(n).ok_or_else(|| {
-                invalid(
-                    file,
-                    "fatigue.sn_curve",
-                    format!(
-                        "one of {} or a table {{ m1, log_a1, m2, log_a2, knee_cycles }}, got \"{n}\"",
-                        crate::fatigue::sn::NAMES.join(", ")
-                    ),
-                )
-            })?,
-            n.clone(),
-        ),
-        SnKey::Table(c) => {
-            for (k, v) in [("m1", c.m1), ("log_a1", c.log_a1)] {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(invalid(file, format!("fatigue.sn_curve.{k}"), "a number > 0"));
-                }
-            }
-            let lower = match (c.m2, c.log_a2, c.knee_cycles) {
-                (Some(m2), Some(a2), Some(knee)) if m2 > 0.0 && a2 > 0.0 && knee > 0.0 => {
-                    Some((m2, a2, knee))
-                }
-                (None, None, None) => None,
-                _ => {
-                    return Err(invalid(
-                        file,
-                        "fatigue.sn_curve",
-                        "m2, log_a2 and knee_cycles all > 0, or none of them (a single slope)",
-                    ))
-                }
-            };
-            (
-                SnCurve {
-                    m1: c.m1,
-                    log_a1: c.log_a1,
-                    lower: lower.map(|(m2, a2, _)| (m2, a2)),
-                    knee_cycles: lower.map(|(_, _, k)| k),
-                    thickness_exponent: c.thickness_exponent,
-                },
-                "user".to_string(),
-            )
-        }
-    };
+    let (curve, curve_name) = sn_curve_of(file, "fatigue.sn_curve", &t.sn_curve)?;
     if !(t.scf.is_finite() && t.scf >= 1.0) {
         return Err(invalid(
             file,
@@ -559,5 +572,6 @@ fn fatigue_of(
             gravity: site.gravity,
             water_depth: site.water_depth,
         },
+        nodes: Vec::new(),
     })
 }

@@ -9,7 +9,7 @@ use catena_fe::statics::EndPositions;
 
 use super::checks::positive;
 use super::invalid;
-use super::tables::{RiserFile, SupportKey};
+use super::tables::{EnvironmentTable, RiserFile, SupportKey};
 use crate::error::SceneError;
 
 /// The uniform line's properties: `(EA, EI, submerged weight, mass)` in N, N·m², N/m, kg/m.
@@ -35,7 +35,7 @@ impl Ends {
             // On the soil at the anchor (its zone's, else the default).
             let d = model.node_od[model.nodes() - 1];
             let emb = model
-                .seabed_law_at_x(self.anchor_x)
+                .seabed_law_for(self.anchor_x, d)
                 .and_then(|sb| catena_fe::statics::static_embedment_on(sb, d, w))
                 .unwrap_or(0.0);
             let (zm, m) = model.mudline_at(self.anchor_x);
@@ -54,16 +54,65 @@ impl Ends {
     }
 }
 
+/// A pipe's keys as written (`[line]`'s or a `[[line_type]]`'s), with the key prefix for messages
+/// and the diameter that displaces water (the outer diameter, or a line type's hydrodynamic one).
+pub(super) struct PipeKeys<'a> {
+    pub(super) prefix: &'a str,
+    pub(super) od: f64,
+    pub(super) wall: Option<f64>,
+    pub(super) youngs_modulus: Option<f64>,
+    pub(super) ea: Option<f64>,
+    pub(super) ei: Option<f64>,
+    pub(super) submerged_weight: Option<f64>,
+    pub(super) mass: Option<f64>,
+    pub(super) steel_density: Option<f64>,
+    pub(super) contents_density: Option<f64>,
+    pub(super) displaced_od: f64,
+}
+
 /// `[line]` → EA, EI, submerged weight and mass, from the stiffnesses and weights given, or from
 /// the steel's modulus, the wall and the densities.
 pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LineProperties, SceneError> {
-    let (l, env) = (&raw.line, &raw.environment);
+    let l = &raw.line;
     positive(file, "line.length", l.length, "a length in m")?;
-    positive(file, "line.od", l.od, "a diameter in m")?;
+    let props = pipe_properties(
+        file,
+        &PipeKeys {
+            prefix: "line",
+            od: l.od,
+            wall: l.wall,
+            youngs_modulus: l.youngs_modulus,
+            ea: l.ea,
+            ei: l.ei,
+            submerged_weight: l.submerged_weight,
+            mass: l.mass,
+            steel_density: l.steel_density,
+            contents_density: l.contents_density,
+            displaced_od: l.od,
+        },
+        &raw.environment,
+    )?;
+    positive(
+        file,
+        "line.submerged_weight",
+        props.2,
+        "a submerged weight in N/m",
+    )?;
+    Ok(props)
+}
+
+/// A pipe's EA, EI, submerged weight (any sign: negative is net buoyant) and mass, checked.
+pub(super) fn pipe_properties(
+    file: &str,
+    l: &PipeKeys<'_>,
+    env: &EnvironmentTable,
+) -> Result<LineProperties, SceneError> {
+    let key = |k: &str| format!("{}.{k}", l.prefix);
+    positive(file, &key("od"), l.od, "a diameter in m")?;
     if !(0.005..=5.0).contains(&l.od) {
         return Err(invalid(
             file,
-            "line.od",
+            key("od"),
             format!("an outer diameter between 0.005 and 5 m (got {} m)", l.od),
         ));
     }
@@ -73,7 +122,7 @@ pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LinePropert
             if !(t > 0.0 && 2.0 * t < l.od) {
                 return Err(invalid(
                     file,
-                    "line.wall",
+                    key("wall"),
                     format!("0 < wall < od/2 (got {t})"),
                 ));
             }
@@ -92,31 +141,34 @@ pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LinePropert
             let i = i_steel.ok_or_else(|| {
                 invalid(
                     file,
-                    "line.wall",
-                    "the wall thickness in m (needed with line.youngs_modulus)",
+                    key("wall"),
+                    format!(
+                        "the wall thickness in m (needed with {})",
+                        key("youngs_modulus")
+                    ),
                 )
             })?;
-            positive(file, "line.youngs_modulus", e, "a modulus in Pa")?;
+            positive(file, &key("youngs_modulus"), e, "a modulus in Pa")?;
             (e * a_steel, e * i)
         }
         _ => {
             return Err(invalid(
                 file,
-                "line.youngs_modulus",
+                key("youngs_modulus"),
                 "either youngs_modulus (with wall) or both ea and ei",
             ))
         }
     };
-    positive(file, "line.ea", ea, "an axial stiffness in N")?;
-    positive(file, "line.ei", ei, "a bending stiffness in N·m²")?;
+    positive(file, &key("ea"), ea, "an axial stiffness in N")?;
+    positive(file, &key("ei"), ei, "a bending stiffness in N·m²")?;
     let g = env.gravity;
-    let a_outer = pi / 4.0 * l.od * l.od;
+    let a_outer = pi / 4.0 * l.displaced_od * l.displaced_od;
     let from_densities = match (l.steel_density, l.contents_density) {
         (Some(rs), Some(rc)) => {
             if l.wall.is_none() {
                 return Err(invalid(
                     file,
-                    "line.wall",
+                    key("wall"),
                     "the wall thickness (needed with the densities)",
                 ));
             }
@@ -124,11 +176,13 @@ pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LinePropert
             Some((m, (m - env.water_density * a_outer) * g))
         }
         (None, None) => None,
+        // The contents' density alone, with the mass and weight given: for the wall tension only.
+        (None, Some(_)) if l.mass.is_some() && l.submerged_weight.is_some() => None,
         _ => {
             return Err(invalid(
                 file,
-                "line.contents_density",
-                "both steel_density and contents_density, or neither",
+                key("contents_density"),
+                "both steel_density and contents_density, or neither (contents_density alone with mass and submerged_weight)",
             ))
         }
     };
@@ -137,17 +191,18 @@ pub(super) fn line_properties(file: &str, raw: &RiserFile) -> Result<LinePropert
         (None, None, Some(mw)) => mw,
         _ => return Err(invalid(
             file,
-            "line.submerged_weight",
+            key("submerged_weight"),
             "either mass and submerged_weight, or steel_density and contents_density (with wall)",
         )),
     };
-    positive(
-        file,
-        "line.submerged_weight",
-        weight,
-        "a submerged weight in N/m",
-    )?;
-    positive(file, "line.mass", mass, "a mass in kg/m")?;
+    if !weight.is_finite() {
+        return Err(invalid(
+            file,
+            key("submerged_weight"),
+            "a finite submerged weight in N/m",
+        ));
+    }
+    positive(file, &key("mass"), mass, "a mass in kg/m")?;
     Ok((ea, ei, weight, mass))
 }
 
@@ -181,12 +236,15 @@ pub(super) fn segments(
             "an element length in m",
         )?;
         segments.push(Segment {
-            length: m.to - from,
-            element_length: m.element_length,
-            section: Section { ea, ei },
-            weight,
-            mass,
-            od: l.od,
+            wall: l.wall,
+            ..Segment::uniform(
+                m.to - from,
+                m.element_length,
+                Section { ea, ei },
+                weight,
+                mass,
+                l.od,
+            )
         });
         from = m.to;
     }
@@ -210,10 +268,20 @@ pub(super) fn line_model(
     raw: &RiserFile,
     segments: Vec<Segment>,
 ) -> Result<LineModel, SceneError> {
-    let (l, env) = (&raw.line, &raw.environment);
+    let env = &raw.environment;
+    // The seabed's default law is for the contact diameter at the anchor, which lies on it; a line
+    // of sections gets laws for its other contact diameters too (unless `[seabed] diameter` sets
+    // one for all).
+    let d_anchor = segments.last().map_or(raw.line.od, |s| s.contact_od);
+    let mut diameters: Vec<f64> = Vec::new();
+    for s in &segments {
+        if s.contact_od != d_anchor && !diameters.contains(&s.contact_od) {
+            diameters.push(s.contact_od);
+        }
+    }
     let seabed = match &raw.seabed {
         Some(t) => Some(SeabedContact {
-            seabed: t.build(file, "seabed", Some(l.od), Some(env.water_density))?,
+            seabed: t.build(file, "seabed", Some(d_anchor), Some(env.water_density))?,
             mudline_z: 0.0,
             friction: t.friction(file, "seabed")?,
         }),
@@ -244,9 +312,21 @@ pub(super) fn line_model(
     };
     let model = LineModel::build(&spec).map_err(|e| invalid(file, "mesh", e.to_string()))?;
     let zones = match &raw.seabed {
-        Some(t) => t.zones(file, "seabed", Some(l.od), Some(env.water_density))?,
+        Some(t) => t.zones(file, "seabed", Some(d_anchor), Some(env.water_density))?,
         None => Vec::new(),
     };
+    let mut diameter_laws = Vec::new();
+    if let Some(t) = raw.seabed.as_ref().filter(|t| t.diameter.is_none()) {
+        for d in diameters {
+            let rho = Some(env.water_density);
+            let laws = t.zones(file, "seabed", Some(d), rho)?;
+            diameter_laws.push((
+                d,
+                t.build(file, "seabed", Some(d), rho)?,
+                laws.into_iter().map(|z| z.seabed).collect(),
+            ));
+        }
+    }
     let profile = match &raw.seabed {
         Some(t) => t.profile(file, "seabed", env.water_depth)?,
         None => Vec::new(),
@@ -254,6 +334,7 @@ pub(super) fn line_model(
     Ok(model
         .with_attachments(&attachments(file, raw)?)
         .with_seabed_zones(zones)
+        .with_diameter_laws(diameter_laws)
         .with_mudline_profile(profile))
 }
 

@@ -14,6 +14,7 @@ mod line;
 pub mod riser;
 mod sea;
 pub mod seabed;
+pub mod sections;
 mod size;
 pub mod tables;
 

@@ -10,6 +10,7 @@ use super::dynamic::dynamic_spec;
 use super::edit::{self, Edit};
 use super::line;
 use super::sea::hydro_of;
+use super::sections;
 use super::{from_doc, invalid, parse, required, Resolver};
 use crate::error::SceneError;
 
@@ -41,8 +42,13 @@ pub struct RiserScene {
     pub statics: StaticTable,
     /// Water depth, m.
     pub water_depth: f64,
-    /// Line summary: (EA, EI, submerged weight, mass).
+    /// Line summary: (EA, EI, submerged weight, mass); a line of sections': its top type's.
     pub line: LineProperties,
+    /// The line types of a line of sections, indexed by the elements' `kind` (empty: the short
+    /// form, one type).
+    pub line_types: Vec<sections::LineType>,
+    /// What the scene does that may not be meant (an unused line type), to be shown to the user.
+    pub warnings: Vec<String>,
     /// The sea water's hydrodynamics (`[hydrodynamics]`, `[current]`), if any: a current acts in the
     /// statics too.
     pub hydro: Option<Hydro>,
@@ -103,19 +109,37 @@ impl RiserScene {
             env.gravity,
             "an acceleration in m/s²",
         )?;
-        let props = line::line_properties(file, raw)?;
-        if raw.mesh.is_empty() {
-            return Err(invalid(file, "mesh", "at least one [[mesh]] section"));
-        }
+        // A line of sections is read as the short form of its top type (the checks on the ends
+        // and the top's motion see that), with its own segments.
+        let sectioned = sections::layout(file, raw)?;
+        let normalised;
+        let (raw, props, segments, line_types, warnings) = match sectioned {
+            Some((layout, warnings)) => {
+                normalised = sections::as_short_form(raw, &layout);
+                let top = layout.types[layout.segments[0].kind].properties;
+                (&normalised, top, layout.segments, layout.types, warnings)
+            }
+            None => {
+                let props = line::line_properties(file, raw)?;
+                if raw.mesh.is_empty() {
+                    return Err(invalid(file, "mesh", "at least one [[mesh]] section"));
+                }
+                let segments = line::segments(file, raw, props)?;
+                (raw, props, segments, Vec::new(), Vec::new())
+            }
+        };
         let size = run_size(file, raw)?;
-        let segments = line::segments(file, raw, props)?;
         let model = line::line_model(file, raw, segments)?;
         let ends = line::ends(file, raw)?;
         check_solvers(file, raw)?;
         check_current_profile(file, &doc)?;
         let _ = required::<f64>;
         let hydro = hydro_of(file, raw, env.water_density)?;
-        let dynamic = match &raw.dynamic {
+        let model = match &hydro {
+            Some(h) => model.with_sea_coefficients(h.coefficients()),
+            None => model,
+        };
+        let mut dynamic = match &raw.dynamic {
             Some(d) => Some(dynamic_spec(
                 file,
                 raw,
@@ -135,6 +159,9 @@ impl RiserScene {
                 None
             }
         };
+        if let (Some(d), false) = (&mut dynamic, line_types.is_empty()) {
+            sections::attach(file, raw, &model, &line_types, d)?;
+        }
         if let Some(m) = dynamic.as_ref().and_then(|d| d.motion.as_ref()) {
             check_motion_reach(file, raw, &ends, m)?;
         }
@@ -155,10 +182,39 @@ impl RiserScene {
             }),
             water_depth: env.water_depth,
             line: props,
+            line_types,
+            warnings,
             hydro,
             dynamic,
             size,
         })
+    }
+}
+
+impl RiserScene {
+    /// The names of the line types, indexed by the elements' `kind` (`["line"]` for the short
+    /// form).
+    pub fn line_type_names(&self) -> Vec<String> {
+        if self.line_types.is_empty() {
+            vec!["line".to_string()]
+        } else {
+            self.line_types.iter().map(|t| t.name.clone()).collect()
+        }
+    }
+
+    /// The sections as `(type name, from, to)`, m of arc length from the top (one for the short
+    /// form).
+    pub fn sections(&self) -> Vec<(String, f64, f64)> {
+        let names = self.line_type_names();
+        let m = &self.model;
+        let mut out: Vec<(String, f64, f64)> = Vec::new();
+        for (e, el) in m.elements.iter().enumerate() {
+            match out.last_mut() {
+                Some(last) if e > 0 && m.elements[e - 1].kind == el.kind => last.2 = m.arc[e + 1],
+                _ => out.push((names[el.kind].clone(), m.arc[e], m.arc[e + 1])),
+            }
+        }
+        out
     }
 }
 

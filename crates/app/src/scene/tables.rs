@@ -31,6 +31,8 @@ fn default_gravity() -> f64 {
 #[allow(missing_docs)]
 pub struct LineTable {
     pub length: f64,
+    /// Absent with `[[section]]` (NaN: not given).
+    #[serde(default = "not_given")]
     pub od: f64,
     pub wall: Option<f64>,
     pub youngs_modulus: Option<f64>,
@@ -40,6 +42,49 @@ pub struct LineTable {
     pub mass: Option<f64>,
     pub steel_density: Option<f64>,
     pub contents_density: Option<f64>,
+}
+
+fn not_given() -> f64 {
+    f64::NAN
+}
+
+/// One `[[line_type]]`: a pipe's properties, referred to by name from `[[section]]`. The keys of
+/// `[line]`'s short form, and a taper's end, other diameters, Morison coefficients and fatigue data.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct LineTypeTable {
+    pub name: String,
+    pub od: f64,
+    pub wall: Option<f64>,
+    pub od_end: Option<f64>,
+    pub wall_end: Option<f64>,
+    pub youngs_modulus: Option<f64>,
+    pub ea: Option<f64>,
+    pub ei: Option<f64>,
+    pub submerged_weight: Option<f64>,
+    pub mass: Option<f64>,
+    pub steel_density: Option<f64>,
+    pub contents_density: Option<f64>,
+    pub hydrodynamic_od: Option<f64>,
+    pub contact_od: Option<f64>,
+    pub cd_normal: Option<f64>,
+    pub cd_axial: Option<f64>,
+    pub ca_normal: Option<f64>,
+    pub sn_curve: Option<SnKey>,
+    pub scf: Option<f64>,
+}
+
+/// One `[[section]]`: a length of one line type, from the previous section's end (the top for the
+/// first) to `to`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct SectionTable {
+    #[serde(rename = "type")]
+    pub kind: String,
+    pub to: f64,
+    pub element_length: f64,
 }
 
 /// One `[[mesh]]` section.
@@ -361,7 +406,12 @@ pub struct RiserFile {
     pub title: Option<String>,
     pub environment: EnvironmentTable,
     pub line: LineTable,
+    #[serde(default)]
     pub mesh: Vec<MeshTable>,
+    #[serde(default)]
+    pub line_type: Vec<LineTypeTable>,
+    #[serde(default)]
+    pub section: Vec<SectionTable>,
     pub ends: EndsTable,
     pub seabed: Option<SeabedTable>,
     pub flexjoint: Option<FlexJointTable>,
