@@ -19,7 +19,8 @@ fn root() -> PathBuf {
 
 /// The heave benchmark with its `[line]` and `[[mesh]]` replaced by `line`.
 fn heave_with(line: &str) -> RiserScene {
-    let text = std::fs::read_to_string(root().join("cases/benchmarks/scr-heave.toml")).expect("test data");
+    let text =
+        std::fs::read_to_string(root().join("cases/benchmarks/scr-heave.toml")).expect("test data");
     let a = text.find("[line]").expect("test data");
     let b = text.find("[ends]").expect("test data");
     let text = format!("{}{line}\n{}", &text[..a], &text[b..])

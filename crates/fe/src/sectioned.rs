@@ -26,13 +26,7 @@ use crate::model::LineModel;
 
 /// Node positions and tangent angles `q` (3 per node) for `H` and `s_td` (see the module docs), and
 /// the top's position reached.
-fn shape(
-    model: &LineModel,
-    h: f64,
-    s_td: f64,
-    (xa, z_c): (f64, f64),
-    q: &mut [f64],
-) -> (f64, f64) {
+fn shape(model: &LineModel, h: f64, s_td: f64, (xa, z_c): (f64, f64), q: &mut [f64]) -> (f64, f64) {
     let n = model.nodes();
     let arc = &model.arc;
     let theta_flat = -std::f64::consts::PI;
@@ -160,9 +154,8 @@ pub fn seed(
         prev = ln_h;
     }
     let (a, b) = bracket?;
-    let (lo, _) = catena_seabed::roots::bisect(a, b, |ln_h| {
-        beyond(&touchdown_for(ln_h.exp(), &mut q))
-    });
+    let (lo, _) =
+        catena_seabed::roots::bisect(a, b, |ln_h| beyond(&touchdown_for(ln_h.exp(), &mut q)));
     let h = lo.exp();
     let Fit::Reach(r, s_td) = touchdown_for(h, &mut q) else {
         return None;
@@ -201,8 +194,16 @@ mod tests {
         let m = line(vec![Segment::uniform(1600.0, 4.0, sec, 1000.0, 100.0, 0.2)]);
         let (_, h, s_td) = seed(&m, (900.0, 1000.0), (0.0, 0.0)).expect("test data");
         let c = TouchdownCatenary::solve(1000.0, 900.0, 1000.0, 1600.0).expect("test data");
-        assert!((h / (1000.0 * c.a) - 1.0).abs() < 1e-6, "H {h} vs {}", 1000.0 * c.a);
-        assert!((s_td - c.suspended).abs() < 1e-3, "{s_td} vs {}", c.suspended);
+        assert!(
+            (h / (1000.0 * c.a) - 1.0).abs() < 1e-6,
+            "H {h} vs {}",
+            1000.0 * c.a
+        );
+        assert!(
+            (s_td - c.suspended).abs() < 1e-3,
+            "{s_td} vs {}",
+            c.suspended
+        );
     }
 
     /// A lazy wave: the seed hangs from the top to a sag bend, rises over the buoyant length to a
@@ -210,7 +211,10 @@ mod tests {
     /// `tan θ` is the weight below it over H.
     #[test]
     fn lazy_wave_has_a_sag_and_a_hog() {
-        let sec = Section { ea: 3.4e9, ei: 1.8e7 };
+        let sec = Section {
+            ea: 3.4e9,
+            ei: 1.8e7,
+        };
         let m = line(vec![
             Segment::uniform(1100.0, 5.0, sec, 1010.0, 145.0, 0.23),
             Segment::uniform(300.0, 5.0, sec, -1200.0, 400.0, 0.9),
@@ -237,7 +241,12 @@ mod tests {
         let ((sag, false), (hog, true)) = (ext[0], ext[1]) else {
             panic!("{ext:?}")
         };
-        assert!(z[hog] > z[sag] + 10.0 && z[sag] > 1.0, "sag {} hog {}", z[sag], z[hog]);
+        assert!(
+            z[hog] > z[sag] + 10.0 && z[sag] > 1.0,
+            "sag {} hog {}",
+            z[sag],
+            z[hog]
+        );
         assert!(s_td > 1400.0, "touchdown at {s_td}");
         // tan θ = V/H with V the weight hanging below the node.
         for i in [10, sag, hog, (hog + m.nodes()) / 2] {
@@ -245,10 +254,16 @@ mod tests {
                 .elements
                 .iter()
                 .enumerate()
-                .map(|(e, el)| el.weight * (m.arc[e + 1].min(s_td) - m.arc[e].max(m.arc[i])).max(0.0))
+                .map(|(e, el)| {
+                    el.weight * (m.arc[e + 1].min(s_td) - m.arc[e].max(m.arc[i])).max(0.0)
+                })
                 .sum();
             let t = (q[3 * i + 2] + std::f64::consts::PI).tan();
-            assert!((t - v / h).abs() < 1e-9 * (1.0 + (v / h).abs()), "node {i}: {t} vs {}", v / h);
+            assert!(
+                (t - v / h).abs() < 1e-9 * (1.0 + (v / h).abs()),
+                "node {i}: {t} vs {}",
+                v / h
+            );
         }
     }
 
