@@ -196,22 +196,17 @@ fn wall_tension_of_a_hanging_column() {
     let w_sub = (m - rho_w * a_o) * g;
     let (len, top_z) = (200.0, 950.0);
     let model = LineModel::build(&LineSpec {
-        segments: vec![Segment {
-            length: len,
-            element_length: 5.0,
-            section: Section {
+        segments: vec![Segment::uniform(
+            len,
+            5.0,
+            Section {
                 ea: 210e9 * s.area(),
                 ei: 210e9 * s.inertia(),
             },
-            weight: w_sub,
-            mass: m,
-            od: s.od,
-            hydro_od: s.od,
-            contact_od: s.od,
-            coefficients: None,
-            kind: 0,
-            wall: None,
-        }],
+            w_sub,
+            m,
+            s.od,
+        )],
         top: Support::Pinned,
         anchor: Support::Free,
         seabed: None,

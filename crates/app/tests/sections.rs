@@ -256,3 +256,25 @@ fn a_lazy_wave_matches_the_catenary_of_its_sections() {
     assert!((sag - sag_c).abs() < 0.5 && (hog - hog_c).abs() < 0.5);
     assert!(hog > sag + 50.0, "a wave: sag {sag} hog {hog}");
 }
+
+/// A line type no section uses is read, and said: the scene's warnings name it.
+#[test]
+fn an_unused_line_type_is_a_warning() {
+    let path = root().join("cases/lazy-wave/static.toml");
+    let text = std::fs::read_to_string(&path).expect("case");
+    let text = text.replacen(
+        "[[section]]",
+        "[[line_type]]\nname = \"spare\"\nod = 0.3\nea = 1e9\nei = 1e6\nmass = 100.0\nsubmerged_weight = 500.0\n\n[[section]]",
+        1,
+    );
+    let scene = RiserScene::parse("lw.toml", &text, &NoFiles).expect("scene");
+    assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
+    assert!(scene.warnings[0].contains("\"spare\""));
+    let plain = RiserScene::parse(
+        "lw.toml",
+        &std::fs::read_to_string(&path).expect("case"),
+        &NoFiles,
+    )
+    .expect("scene");
+    assert!(plain.warnings.is_empty());
+}

@@ -30,6 +30,7 @@ fn write_json(path: &Path, v: &serde_json::Value) -> Result<(), AppError> {
 /// `catena static CASE --out DIR`: `results.h5` (`/static`), `summary.json`, `static.png`.
 pub fn static_(case: &Path, out: &Path) -> Result<String, AppError> {
     let scene = statics::read_scene(case)?;
+    warn(&scene);
     let run = statics::solve(scene)?;
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
     let h5p = out.join("results.h5");
@@ -89,6 +90,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     }
     let restart = opts.restart.as_deref().map(Checkpoint::read).transpose()?;
     let scene = statics::read_scene(case)?;
+    warn(&scene);
     if scene.dynamic.is_none() {
         return Err(AppError::Run {
             file: scene.file.clone(),
@@ -665,12 +667,20 @@ fn finite(x: f64) -> serde_json::Value {
 const US_PER_ELEMENT_STEP: f64 = 0.39;
 const WAVES_FACTOR_400: f64 = 1.52;
 
+/// A scene's warnings (what it does that may not be meant), on standard error.
+fn warn(scene: &catena::scene::riser::RiserScene) {
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
 /// What one riser scene would run, as lines of text, with its warnings.
 fn describe_scene(
     scene: &catena::scene::riser::RiserScene,
     t: &mut String,
     warnings: &mut Vec<String>,
 ) -> f64 {
+    warnings.extend(scene.warnings.iter().cloned());
     let size = scene.size;
     let _ = writeln!(t, "  title: {}", scene.title);
     let mut effects = vec![format!(

@@ -664,21 +664,18 @@ mod assembly_tests {
     /// anchor, bent into a shape with every kind of element: the ends' (some dofs prescribed) and
     /// interior ones, and one chord laid from the top pointing along −x (the angle wrap's side).
     fn bent_line() -> (LineModel, Placement, Vec<f64>) {
-        let seg = |length, element_length| Segment {
-            length,
-            element_length,
-            section: Section {
-                ea: 3.4e9,
-                ei: 17.7e6,
-            },
-            weight: 1010.0,
-            mass: 145.0,
-            od: 0.2286,
-            hydro_od: 0.2286,
-            contact_od: 0.2286,
-            coefficients: None,
-            kind: 0,
-            wall: None,
+        let seg = |length, element_length| {
+            Segment::uniform(
+                length,
+                element_length,
+                Section {
+                    ea: 3.4e9,
+                    ei: 17.7e6,
+                },
+                1010.0,
+                145.0,
+                0.2286,
+            )
         };
         let model = LineModel::build(&LineSpec {
             segments: vec![seg(40.0, 4.0), seg(13.0, 1.0)],

@@ -517,19 +517,14 @@ mod tests {
     /// except two clear above it, gently bent, pinned at its left end.
     fn line(law: Law) -> (LineModel, Placement) {
         let model = LineModel::build(&LineSpec {
-            segments: vec![Segment {
-                length: 10.0,
-                element_length: 1.0,
-                section: Section { ea: 1e8, ei: 1e5 },
-                weight: 500.0,
-                mass: 100.0,
-                od: 0.3,
-                hydro_od: 0.3,
-                contact_od: 0.3,
-                coefficients: None,
-                kind: 0,
-                wall: None,
-            }],
+            segments: vec![Segment::uniform(
+                10.0,
+                1.0,
+                Section { ea: 1e8, ei: 1e5 },
+                500.0,
+                100.0,
+                0.3,
+            )],
             top: Support::Pinned,
             anchor: Support::Free,
             seabed: Some(SeabedContact {

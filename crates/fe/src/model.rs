@@ -402,11 +402,6 @@ impl LineModel {
             .collect()
     }
 
-    /// Node `i`'s line type: its element's below it (the anchor's: its element's above it).
-    pub fn node_kind(&self, i: usize) -> usize {
-        self.elements[i.min(self.elements.len() - 1)].kind
-    }
-
     /// The Model on a mudline of the given profile (see [`LineModel::mudline_profile`]).
     pub fn with_mudline_profile(mut self, profile: Vec<(f64, f64)>) -> Self {
         self.mudline_profile = profile;

@@ -51,19 +51,14 @@ fn line(
     anchor: Support,
 ) -> LineModel {
     LineModel::build(&LineSpec {
-        segments: vec![Segment {
-            length: l,
-            element_length: l / n as f64,
-            section: Section { ea, ei },
-            weight: w,
-            mass: m,
-            od: 0.1,
-            hydro_od: 0.1,
-            contact_od: 0.1,
-            coefficients: None,
-            kind: 0,
-            wall: None,
-        }],
+        segments: vec![Segment::uniform(
+            l,
+            l / n as f64,
+            Section { ea, ei },
+            w,
+            m,
+            0.1,
+        )],
         top,
         anchor,
         seabed: None,

@@ -21,19 +21,14 @@ use catena_fe::statics::{self, Placement, StaticOptions, StaticWorkspace};
 const PI: f64 = std::f64::consts::PI;
 
 fn segment(length: f64, n: usize, ea: f64, ei: f64, mass: f64, weight: f64, od: f64) -> Segment {
-    Segment {
+    Segment::uniform(
         length,
-        element_length: length / n as f64,
-        section: Section { ea, ei },
+        length / n as f64,
+        Section { ea, ei },
         weight,
         mass,
         od,
-        hydro_od: od,
-        contact_od: od,
-        coefficients: None,
-        kind: 0,
-        wall: None,
-    }
+    )
 }
 
 fn model(seg: Segment, top: Support, anchor: Support, flexjoint: Option<(f64, f64)>) -> LineModel {

@@ -24,18 +24,8 @@ fn linear(k: f64) -> Seabed {
 }
 
 fn scr(seabed: Seabed, ea: f64, ei: f64, tdz_element: f64) -> LineModel {
-    let seg = |length, element_length| Segment {
-        length,
-        element_length,
-        section: Section { ea, ei },
-        weight: W,
-        mass: 144.8,
-        od: OD,
-        hydro_od: OD,
-        contact_od: OD,
-        coefficients: None,
-        kind: 0,
-        wall: None,
+    let seg = |length, element_length| {
+        Segment::uniform(length, element_length, Section { ea, ei }, W, 144.8, OD)
     };
     LineModel::build(&LineSpec {
         segments: vec![seg(1050.0, 5.0), seg(300.0, tdz_element), seg(250.0, 5.0)],
@@ -224,19 +214,14 @@ fn rq_far_field_embedment_is_the_laws_static_solution() {
 
 fn cantilever(n: usize, l: f64, ei: f64) -> LineModel {
     LineModel::build(&LineSpec {
-        segments: vec![Segment {
-            length: l,
-            element_length: l / n as f64,
-            section: Section { ea: ei * 1e6, ei },
-            weight: 0.0,
-            mass: 0.0,
-            od: 0.1,
-            hydro_od: 0.1,
-            contact_od: 0.1,
-            coefficients: None,
-            kind: 0,
-            wall: None,
-        }],
+        segments: vec![Segment::uniform(
+            l,
+            l / n as f64,
+            Section { ea: ei * 1e6, ei },
+            0.0,
+            0.0,
+            0.1,
+        )],
         top: Support::Fixed,
         anchor: Support::Free,
         seabed: None,

@@ -9,7 +9,7 @@ use catena_fe::statics::EndPositions;
 
 use super::checks::positive;
 use super::invalid;
-use super::tables::{EnvironmentTable, RiserFile, SupportKey};
+use super::tables::{EnvironmentTable, MeshTable, RiserFile, SupportKey};
 use crate::error::SceneError;
 
 /// The uniform line's properties: `(EA, EI, submerged weight, mass)` in N, N·m², N/m, kg/m.
@@ -216,13 +216,42 @@ pub(super) fn segments(
     if raw.mesh.is_empty() {
         return Err(invalid(file, "mesh", "at least one [[mesh]] section"));
     }
-    let mut segments = Vec::new();
+    let lengths = mesh_lengths(file, "mesh", &raw.mesh, l.length)?;
+    let segments = raw
+        .mesh
+        .iter()
+        .zip(lengths)
+        .map(|(m, length)| Segment {
+            wall: l.wall,
+            ..Segment::uniform(
+                length,
+                m.element_length,
+                Section { ea, ei },
+                weight,
+                mass,
+                l.od,
+            )
+        })
+        .collect();
+    Ok(segments)
+}
+
+/// The lengths of a line's sections as written (`[[mesh]]` or `[[section]]`, the array `table`),
+/// checked: each ends (`to`, m of arc length from the top) beyond the previous one's end, has an
+/// element length > 0, and the last ends at the line's `length`.
+pub(super) fn mesh_lengths(
+    file: &str,
+    table: &str,
+    rows: &[MeshTable],
+    length: f64,
+) -> Result<Vec<f64>, SceneError> {
+    let mut out = Vec::with_capacity(rows.len());
     let mut from = 0.0;
-    for (i, m) in raw.mesh.iter().enumerate() {
+    for (i, m) in rows.iter().enumerate() {
         if m.to.is_nan() || m.to <= from {
             return Err(invalid(
                 file,
-                format!("mesh[{i}].to"),
+                format!("{table}[{i}].to"),
                 format!(
                     "an arc length beyond the previous section's end ({from} m), got {}",
                     m.to
@@ -231,34 +260,21 @@ pub(super) fn segments(
         }
         positive(
             file,
-            &format!("mesh[{i}].element_length"),
+            &format!("{table}[{i}].element_length"),
             m.element_length,
             "an element length in m",
         )?;
-        segments.push(Segment {
-            wall: l.wall,
-            ..Segment::uniform(
-                m.to - from,
-                m.element_length,
-                Section { ea, ei },
-                weight,
-                mass,
-                l.od,
-            )
-        });
+        out.push(m.to - from);
         from = m.to;
     }
-    if (from - l.length).abs() > 1e-9 * l.length {
+    if (from - length).abs() > 1e-9 * length {
         return Err(invalid(
             file,
-            format!("mesh[{}].to", raw.mesh.len() - 1),
-            format!(
-                "the line length {} m (the last section must end there), got {from}",
-                l.length
-            ),
+            format!("{table}[{}].to", rows.len().saturating_sub(1)),
+            format!("the line length {length} m (the last section must end there), got {from}"),
         ));
     }
-    Ok(segments)
+    Ok(out)
 }
 
 /// The line Model: segments, supports, the seabed contact (`[seabed]`) and the flexjoint

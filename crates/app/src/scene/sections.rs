@@ -24,7 +24,7 @@ use catena_fe::model::{LineModel, Segment};
 use super::checks::positive;
 use super::dynamic::{sn_curve_of, DynamicSpec};
 use super::invalid;
-use super::line::{pipe_properties, LineProperties, PipeKeys};
+use super::line::{mesh_lengths, pipe_properties, LineProperties, PipeKeys};
 use super::tables::{LineTypeTable, MeshTable, RiserFile};
 use crate::error::SceneError;
 use crate::fatigue::sn::SnCurve;
@@ -132,11 +132,18 @@ pub(super) fn layout(
             }
         }
     }
+    let mesh: Vec<MeshTable> = raw
+        .section
+        .iter()
+        .map(|s| MeshTable {
+            to: s.to,
+            element_length: s.element_length,
+        })
+        .collect();
+    let lengths = mesh_lengths(file, "section", &mesh, l.length)?;
     let mut segments = Vec::new();
-    let mut mesh = Vec::new();
     let mut used = vec![false; types.len()];
-    let mut from = 0.0;
-    for (j, s) in raw.section.iter().enumerate() {
+    for (j, (s, length)) in raw.section.iter().zip(lengths).enumerate() {
         let k = raw
             .line_type
             .iter()
@@ -154,45 +161,14 @@ pub(super) fn layout(
                 )
             })?;
         used[k] = true;
-        if s.to.is_nan() || s.to <= from {
-            return Err(invalid(
-                file,
-                format!("section[{j}].to"),
-                format!(
-                    "an arc length beyond the previous section's end ({from} m), got {}",
-                    s.to
-                ),
-            ));
-        }
-        positive(
-            file,
-            &format!("section[{j}].element_length"),
-            s.element_length,
-            "an element length in m",
-        )?;
         segments.extend(section_segments(
             file,
             raw,
             k,
             &raw.line_type[k],
-            s.to - from,
+            length,
             s.element_length,
         )?);
-        mesh.push(MeshTable {
-            to: s.to,
-            element_length: s.element_length,
-        });
-        from = s.to;
-    }
-    if (from - l.length).abs() > 1e-9 * l.length {
-        return Err(invalid(
-            file,
-            format!("section[{}].to", raw.section.len() - 1),
-            format!(
-                "the line length {} m (the last section must end there), got {from}",
-                l.length
-            ),
-        ));
     }
     let warnings = used
         .iter()
@@ -415,24 +391,32 @@ pub fn node_elements(model: &LineModel) -> Vec<usize> {
         .collect()
 }
 
-/// Each node's pipe section for a line of sections: `template` (the contents, pressures and sea)
-/// with its element's ([`node_elements`]) outer diameter and wall, and the contents density
-/// `contents(kind)` of its line type. `None` if an element has no wall.
+/// Each node's element ([`node_elements`]) and pipe section for a line of sections: `template`
+/// (the contents, pressures and sea) with the element's outer diameter and wall, and the contents
+/// density `contents` if given (`[fatigue]`'s), else its line type's, else the template's. `None`
+/// if an element has no wall.
 pub fn node_sections(
     model: &LineModel,
+    types: &[LineType],
     template: &PipeSection,
-    contents: impl Fn(usize) -> f64,
-) -> Option<Vec<PipeSection>> {
+    contents: Option<f64>,
+) -> Option<Vec<(usize, PipeSection)>> {
     node_elements(model)
         .into_iter()
         .map(|e| {
             let el = &model.elements[e];
-            Some(PipeSection {
-                od: el.od,
-                wall: el.wall?,
-                contents_density: contents(el.kind),
-                ..*template
-            })
+            let density = contents
+                .or(types[el.kind].contents_density)
+                .unwrap_or(template.contents_density);
+            Some((
+                e,
+                PipeSection {
+                    od: el.od,
+                    wall: el.wall?,
+                    contents_density: density,
+                    ..*template
+                },
+            ))
         })
         .collect()
 }
@@ -447,7 +431,7 @@ pub(super) fn attach(
     types: &[LineType],
     spec: &mut DynamicSpec,
 ) -> Result<(), SceneError> {
-    let fatigue_contents = raw.fatigue.as_ref().and_then(|f| f.contents_density);
+    let contents = raw.fatigue.as_ref().and_then(|f| f.contents_density);
     if let Some(f) = &mut spec.fatigue {
         for (i, t) in raw.line_type.iter().enumerate() {
             if t.wall.is_none() {
@@ -458,15 +442,9 @@ pub(super) fn attach(
                 ));
             }
         }
-        let contents = |k: usize| {
-            fatigue_contents
-                .or(types[k].contents_density)
-                .unwrap_or(f.section.contents_density)
-        };
-        let sections = node_sections(model, &f.section, contents).unwrap_or_default();
-        f.nodes = node_elements(model)
+        f.nodes = node_sections(model, types, &f.section, contents)
+            .unwrap_or_default()
             .into_iter()
-            .zip(sections)
             .map(|(e, sec)| {
                 let t = &types[model.elements[e].kind];
                 let curve = t.sn_curve.as_ref().map_or(f.curve, |c| c.0);
@@ -474,17 +452,11 @@ pub(super) fn attach(
             })
             .collect();
     }
-    spec.node_sections = match &spec.section {
-        Some(template) => {
-            let contents = |k: usize| {
-                fatigue_contents
-                    .or(types[k].contents_density)
-                    .unwrap_or(template.contents_density)
-            };
-            node_sections(model, template, contents).unwrap_or_default()
-        }
-        None => Vec::new(),
-    };
+    spec.node_sections = spec
+        .section
+        .and_then(|template| node_sections(model, types, &template, contents))
+        .map(|v| v.into_iter().map(|(_, sec)| sec).collect())
+        .unwrap_or_default();
     if spec.node_sections.is_empty() {
         // Some type has no wall: no stress range graphs (the top type's would be wrong elsewhere).
         spec.section = None;
