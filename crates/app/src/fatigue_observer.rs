@@ -78,12 +78,30 @@ impl Fatigue {
         }
         self.span.0.get_or_insert(s.t);
         self.span.1 = s.t;
+        // Compiled for one section (its section, curve and factor constants of the loop, whose
+        // areas the compiler takes out of it) and for a line of sections (each node's own).
+        if self.spec.nodes.is_empty() {
+            self.count::<false>(s);
+        } else {
+            self.count::<true>(s);
+        }
+    }
+
+    /// Counts one step's stresses at every node (`PER_NODE`: each node's section, curve and factor).
+    #[inline(always)]
+    fn count<const PER_NODE: bool>(&mut self, s: &StepView<'_>) {
         let r = s.results;
         let nf = self.spec.fibres.len();
-        let sections = &self.spec.nodes;
         for i in 0..self.n {
-            let (curve, factor) = (self.node_curve[i], self.node_factor[i]);
-            let sec = sections.get(i).map_or(&self.spec.section, |n| &n.0);
+            let (sec, curve, factor) = if PER_NODE {
+                (
+                    &self.spec.nodes[i].0,
+                    self.node_curve[i],
+                    self.node_factor[i],
+                )
+            } else {
+                (&self.spec.section, self.spec.curve, self.factor)
+            };
             for (k, f) in self.spec.fibres.iter().enumerate() {
                 let (top, bottom) = sec.fibre_stresses(*f, r.tension[i], r.moment[i], r.z[i]);
                 for (side, sigma) in [(0, top), (1, bottom)] {

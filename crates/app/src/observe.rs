@@ -434,19 +434,36 @@ impl Envelopes {
         }
         self.curvature.take(k);
         if let (Some(sec), Some([wt, top, bottom])) = (&self.section, &mut self.wall) {
-            let outer = crate::fatigue::stress::Fibre::Outer;
             let [w, t, b] = &mut self.section_scratch;
-            for i in 0..s.moment.len() {
-                let sec = self.node_sections.get(i).unwrap_or(sec);
-                let (te, z) = (s.tension[i], s.z[i]);
-                w[i] = te + sec.wall_minus_effective(z);
-                (t[i], b[i]) = sec.fibre_stresses(outer, te, s.moment[i], z);
+            // One section (a constant of the loop) or each node's own.
+            if self.node_sections.is_empty() {
+                wall_stresses(s, |_| sec, [w, t, b]);
+            } else {
+                let per_node = &self.node_sections;
+                wall_stresses(s, |i| &per_node[i], [w, t, b]);
             }
             wt.take(w);
             top.take(t);
             bottom.take(b);
         }
         self.samples += 1;
+    }
+}
+
+/// Each node's wall tension and outer-fibre stresses (top, bottom) into `w`, `t`, `b`, with node
+/// `i`'s section `section(i)`.
+#[inline(always)]
+fn wall_stresses<'s>(
+    s: &LineResults,
+    section: impl Fn(usize) -> &'s crate::fatigue::stress::PipeSection,
+    [w, t, b]: [&mut Vec<f64>; 3],
+) {
+    let outer = crate::fatigue::stress::Fibre::Outer;
+    for i in 0..s.moment.len() {
+        let sec = section(i);
+        let (te, z) = (s.tension[i], s.z[i]);
+        w[i] = te + sec.wall_minus_effective(z);
+        (t[i], b[i]) = sec.fibre_stresses(outer, te, s.moment[i], z);
     }
 }
 

@@ -204,7 +204,13 @@ pub fn assemble(
         }
     }
     if let Some(h) = m.hydro {
-        add_hydrodynamics(h, m, at, scale, asm, &mut scratch.node_tangent);
+        // Compiled for the sea's coefficients everywhere and for a line whose types have their own
+        // (chosen once: the sea's are then constants of the loop).
+        if m.line.node_coefficients.is_empty() {
+            add_hydrodynamics::<false>(h, m, at, scale, asm, &mut scratch.node_tangent);
+        } else {
+            add_hydrodynamics::<true>(h, m, at, scale, asm, &mut scratch.node_tangent);
+        }
         if !m.line.attachments.is_empty() {
             add_attachment_drag(h, m, at, scale, asm);
         }
@@ -432,9 +438,10 @@ pub fn commit_friction(
 }
 
 /// Drag and wave inertia at every node (see the module docs). The damping block enters the tangent
-/// when `c_v ≠ 0` (the dynamics).
+/// when `c_v ≠ 0` (the dynamics). `OWN`: the nodes have their own coefficients
+/// (`LineModel::node_coefficients`), else the sea's.
 #[inline]
-fn add_hydrodynamics(
+fn add_hydrodynamics<const OWN: bool>(
     h: &Hydro,
     m: &LoadModel<'_>,
     at: &Iterate<'_>,
@@ -451,8 +458,11 @@ fn add_hydrodynamics(
     node_tangents(&pl.base, u, node_tangent);
     let hc = h.coefficients();
     for i in 0..model.nodes() {
-        // A line type's own coefficients, where the line has any (else the sea's).
-        let c = model.node_coefficients.get(i).unwrap_or(&hc);
+        let c = if OWN {
+            &model.node_coefficients[i]
+        } else {
+            &hc
+        };
         let (tx, ty) = (node_tangent[0][i], node_tangent[1][i]);
         let z = pl.base[3 * i + 1] + u[3 * i + 1];
         let kin = at.wave_kin.get(i).copied().flatten();
