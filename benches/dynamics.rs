@@ -205,5 +205,39 @@ fn friction(c: &mut Criterion) {
 /// Steps of a storm benchmark.
 const STEPS: usize = 20;
 
-criterion_group!(benches, bench, waves, friction);
+/// What a line of sections costs per step: the steel lazy wave of `cases/lazy-wave/cabledyn-heave.toml`
+/// (770 elements of three sections, a linear seabed like the heave benchmark's, 2000 steps of the
+/// heave benchmark's motion), the dynamics alone (from a solved statics: the lazy wave's statics
+/// take longer, for its seed), no output; and the heave benchmark the same way. Its cost per element-step and per
+/// element-iteration against `heave/heave_benchmark_full` (400 elements of one section) is in
+/// `benches/README.md`; the Newton iterations of both are printed once.
+fn sections(c: &mut Criterion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut g = c.benchmark_group("sections");
+    g.sample_size(10);
+    for (name, case) in [
+        (
+            "lazy_wave_heave_full",
+            "cases/lazy-wave/cabledyn-heave.toml",
+        ),
+        ("scr_heave_full", "cases/benchmarks/scr-heave.toml"),
+    ] {
+        let scene = catena::statics::read_scene(&root.join(case)).expect("case");
+        let st = catena::statics::solve(scene).expect("statics");
+        let run = |st: &catena::statics::StaticRun| {
+            catena::run::run(st.clone(), &mut [], catena::run::RunOptions::default()).expect("run")
+        };
+        let r = run(&st);
+        println!(
+            "{name}: {} elements, {} steps, {} Newton iterations",
+            r.model.line.elements.len(),
+            r.steps,
+            r.iterations
+        );
+        g.bench_function(name, |b| b.iter(|| run(&st)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, waves, friction, sections);
 criterion_main!(benches);

@@ -383,3 +383,28 @@ fn touchdown_crossing_a_zone_boundary() {
         "{lo} {hi} {boundary_arc}"
     );
 }
+
+/// The steel lazy wave in a violent heave (8 m, 8 s; `cases/hard/lazy-wave-violent-heave`): the
+/// hanging line above the buoyancy goes slack as the top falls (least effective tension −26.7 kN at
+/// 940 m measured, compressed between 810 and 1045 m), and the run completes without a cut.
+#[test]
+fn lazy_wave_violent_heave_goes_slack_above_the_buoyancy() {
+    let r = run_case("hard/lazy-wave-violent-heave", |t| t);
+    let mins = &r.envelopes.tension.min;
+    let (i, min_t) =
+        mins.iter().copied().enumerate().fold(
+            (0, f64::INFINITY),
+            |a, (i, t)| if t < a.1 { (i, t) } else { a },
+        );
+    let arc = r.model.line.arc[i];
+    println!(
+        "lazy wave violent heave: least effective tension {:.1} kN at {arc:.1} m, {} cuts",
+        min_t / 1e3,
+        r.cuts
+    );
+    assert!(min_t < 0.0, "compression expected: {min_t}");
+    assert!(
+        arc < r.model.line.section_boundaries()[0],
+        "slack at {arc} m"
+    );
+}

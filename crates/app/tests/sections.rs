@@ -278,3 +278,32 @@ fn an_unused_line_type_is_a_warning() {
     .expect("scene");
     assert!(plain.warnings.is_empty());
 }
+
+/// The steel lazy wave as CableDyn 0.3.0 runs it too (`cases/lazy-wave/cabledyn-heave.toml`,
+/// `validation/cabledyn/lazy-wave.dat`: a linear seabed and a pinned top): CableDyn's statics give
+/// top tension 1023.91 kN, anchor tension 169.36 kN, touchdown 1745.78 m of (stretched) arc, the hog
+/// bend 241.15 m and the sag bend 133.85 m above the mudline. catena agrees within 0.1 %, and the
+/// bends' heights within 0.2 m (measured: 0.00 %, 0.03 %, 0.02 %, 0.06 m and 0.08 m;
+/// `validation/lazy-wave.md` has the heave's ranges too).
+#[test]
+fn a_lazy_wave_matches_cabledyn() {
+    let scene =
+        statics::read_scene(&root().join("cases/lazy-wave/cabledyn-heave.toml")).expect("scene");
+    let st = statics::solve(scene).expect("statics");
+    let (s, r, m) = (&st.summary, &st.results, &st.model);
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    let n = m.nodes();
+    let between = |lo: f64, hi: f64| (0..n).filter(move |&i| m.arc[i] >= lo && m.arc[i] <= hi);
+    let sag = between(900.0, 1400.0).fold(f64::MAX, |a, i| a.min(r.z[i]));
+    let hog = between(1150.0, 1700.0).fold(f64::MIN, |a, i| a.max(r.z[i]));
+    let td = s.touchdown_arc.expect("touchdown");
+    println!(
+        "lazy wave vs CableDyn: top {:.2} kN, anchor {:.2} kN, touchdown {td:.2} m, sag {sag:.2} m, hog {hog:.2} m",
+        r.tension[0] / 1e3,
+        r.tension[n - 1] / 1e3
+    );
+    assert!(rel(r.tension[0], 1023.91e3) < 1e-3);
+    assert!(rel(r.tension[n - 1], 169.36e3) < 1e-3);
+    assert!(rel(td, 1745.78) < 1e-3);
+    assert!((hog - 241.15).abs() < 0.2 && (sag - 133.85).abs() < 0.2);
+}
