@@ -29,6 +29,8 @@ const CASES: &[&str] = &[
     "hard/friction-stick-slip",
     "hard/zone-boundary",
     "scr1000/static-rq-slope-2deg",
+    "lazy-wave/heave",
+    "scr1000/static-rq-touchdown-joint",
 ];
 
 const HOSTILE: &[&str] = &[
