@@ -21,16 +21,14 @@ fn bench(c: &mut Criterion) {
     let model = scene.model.clone();
     c.bench_function("scr1000_static_solve", |b| {
         b.iter(|| {
-            let q = statics::catenary_seed(&model, &scene.ends.positions(&model, scene.line.2))
-                .expect("seed");
+            let q = statics::catenary_seed(&model, &scene.ends.positions(&model)).expect("seed");
             let pl = Placement::new(&q);
             let mut u = vec![0.0; q.len()];
             let mut ws = StaticWorkspace::new(&model).expect("ws");
             statics::solve(&model, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("solve")
         })
     });
-    let q =
-        statics::catenary_seed(&model, &scene.ends.positions(&model, scene.line.2)).expect("seed");
+    let q = statics::catenary_seed(&model, &scene.ends.positions(&model)).expect("seed");
     let pl = Placement::new(&q);
     let mut u = vec![0.0; q.len()];
     let mut ws = StaticWorkspace::new(&model).expect("ws");

@@ -60,12 +60,7 @@ pub fn solve(scene: RiserScene) -> Result<StaticRun, AppError> {
     };
     // A default anchor height is the pipe resting at its static embedment (found here, not in the
     // parser).
-    let w_anchor = scene
-        .model
-        .elements
-        .last()
-        .map_or(scene.line.2, |e| e.weight);
-    let ends = scene.ends.positions(&scene.model, w_anchor);
+    let ends = scene.ends.positions(&scene.model);
     let q = statics::catenary_seed(&scene.model, &ends).map_err(st_err)?;
     let given_neutral = scene
         .flexjoint_neutral_from_vertical

@@ -29,8 +29,10 @@ pub struct Ends {
 
 impl Ends {
     /// The end positions for the statics. A default anchor height is `D/2 − e`, `e` the static
-    /// embedment of the line's submerged weight `w` (N/m) on the Model's seabed (0 if none is found).
-    pub fn positions(&self, model: &LineModel, w: f64) -> EndPositions {
+    /// embedment of the submerged weight of the line's last element (N/m) on the Model's seabed
+    /// there (0 if none is found).
+    pub fn positions(&self, model: &LineModel) -> EndPositions {
+        let w = model.elements.last().map_or(0.0, |e| e.weight);
         let z = self.anchor_z.unwrap_or_else(|| {
             // On the soil at the anchor (its zone's, else the default).
             let d = model.node_od[model.nodes() - 1];

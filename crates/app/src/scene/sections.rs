@@ -54,8 +54,8 @@ pub(super) struct Layout {
     pub(super) mesh: Vec<MeshTable>,
 }
 
-/// The line of sections, or `None` for the short form (no `[[section]]`). Unused types are refused
-/// only when unknown; an unused one is listed in the returned warnings.
+/// The line of sections with its warnings (a line type no section uses), or `None` for the short
+/// form (no `[[section]]`). A section naming an unknown type is an error.
 pub(super) fn layout(
     file: &str,
     raw: &RiserFile,
@@ -101,7 +101,6 @@ pub(super) fn layout(
             "no [[mesh]] with [[section]] (each section has its element_length)",
         ));
     }
-    let hydro = raw.hydrodynamics.as_ref();
     let mut types = Vec::new();
     for (i, t) in raw.line_type.iter().enumerate() {
         if raw.line_type[..i].iter().any(|u| u.name == t.name) {
@@ -112,25 +111,6 @@ pub(super) fn layout(
             ));
         }
         types.push(line_type(file, raw, i, t)?);
-        for (k, v) in [
-            ("cd_normal", t.cd_normal),
-            ("cd_axial", t.cd_axial),
-            ("ca_normal", t.ca_normal),
-        ] {
-            if let Some(v) = v {
-                let key = format!("line_type[{i}].{k}");
-                if !(v.is_finite() && v >= 0.0) {
-                    return Err(invalid(file, key, format!("a coefficient >= 0, got {v}")));
-                }
-                if hydro.is_none() {
-                    return Err(invalid(
-                        file,
-                        key,
-                        "a [hydrodynamics] table as well (the sea's density and the other coefficients)",
-                    ));
-                }
-            }
-        }
     }
     let mesh: Vec<MeshTable> = raw
         .section
@@ -265,6 +245,28 @@ fn line_type(
             &keys(&prefix, t, od_end, Some(wall_end)),
             &raw.environment,
         )?;
+    }
+    for (k, v) in [
+        ("cd_normal", t.cd_normal),
+        ("cd_axial", t.cd_axial),
+        ("ca_normal", t.ca_normal),
+    ] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(invalid(
+                    file,
+                    key(k),
+                    format!("a coefficient >= 0, got {v}"),
+                ));
+            }
+            if raw.hydrodynamics.is_none() {
+                return Err(invalid(
+                    file,
+                    key(k),
+                    "a [hydrodynamics] table as well (the sea's density and the other coefficients)",
+                ));
+            }
+        }
     }
     let sn_curve = match &t.sn_curve {
         Some(k) => Some(sn_curve_of(file, &key("sn_curve"), k)?),
