@@ -347,6 +347,39 @@ fn friction_stick_slip_on_a_slow_surge() {
     assert!(a < 0.5 * b, "{a} vs {b}");
 }
 
+/// The same stick–slip on a seabed rising 2° towards the anchor (friction along the local mudline,
+/// its anchors points on the slope): it completes, and the seabed section still carries the axial
+/// load variation (anchor tension range under half of the frictionless run's on the same slope).
+#[test]
+fn friction_stick_slip_on_a_sloping_seabed() {
+    let slope = |t: String| {
+        t.edit(
+            "[seabed]\n",
+            "[seabed]\nprofile = [[0.0, 0.0], [2000.0, -69.84]]\n",
+        )
+    };
+    let with = run_case("hard/friction-stick-slip", slope);
+    let without = run_case("hard/friction-stick-slip", |t| {
+        slope(t).edit(
+            "[seabed.friction]\naxial = 0.5 ",
+            "[seabed.friction]\naxial = 0.0 ",
+        )
+    });
+    let anchor_range = |r: &DynamicRun| {
+        let e = &r.envelopes.tension;
+        let n = e.max.len() - 1;
+        e.max[n] - e.min[n]
+    };
+    let (a, b) = (anchor_range(&with), anchor_range(&without));
+    println!(
+        "friction stick-slip on a 2° slope: anchor tension range {:.2} kN with friction, {:.2} kN without; {} cuts",
+        a / 1e3,
+        b / 1e3,
+        with.cuts
+    );
+    assert!(a < 0.5 * b, "{a} vs {b}");
+}
+
 /// A touchdown crossing a soil zone boundary (issue 28): the heave benchmark's riser with a soft
 /// zone (20 kN/m/m² against 100) under its resting part, up to x = 400 m, about where its touchdown
 /// point rests, in a 2 m heave (`cases/hard/zone-boundary`). It completes; the resting pipe sinks

@@ -193,8 +193,9 @@ pub struct DynState {
     /// time grid ([`crate::wave_sampling`]); `None` otherwise.
     #[serde(default)]
     pub wave_grid: Option<KinematicsGrid>,
-    /// Each node's axial friction anchor, m (the x at which its friction spring is unstretched),
-    /// when the seabed has friction ([`crate::loads`]); empty otherwise.
+    /// Each node's axial friction anchor, m, when the seabed has friction ([`crate::loads`]): the
+    /// x at which its friction spring is unstretched, or on a sloping mudline (a profile) the
+    /// point `x, z` (two entries per node); empty otherwise.
     #[serde(default)]
     pub friction_anchor: Vec<f64>,
 }
@@ -243,7 +244,7 @@ impl DynState {
         let n_fric = friction_nodes(&dm.line);
         if self.friction_anchor.len() != n_fric {
             return Err(format!(
-                "state.friction_anchor has {} entries, expected {n_fric} (one per node with seabed friction, none without)",
+                "state.friction_anchor has {} entries, expected {n_fric} (one per node with seabed friction, two on a sloping mudline, none without)",
                 self.friction_anchor.len()
             ));
         }
@@ -492,10 +493,12 @@ impl DynWorkspace {
     }
 }
 
-/// The nodes that carry a friction anchor: every node when the seabed has friction, none otherwise.
+/// The friction anchors' entries: one per node (x) when the seabed has friction, two (x, z) on a
+/// profile, none without friction.
 fn friction_nodes(line: &LineModel) -> usize {
     match line.seabed.as_ref().and_then(|s| s.friction) {
-        Some(_) => line.nodes(),
+        Some(_) if line.mudline_profile.is_empty() => line.nodes(),
+        Some(_) => 2 * line.nodes(),
         None => 0,
     }
 }
@@ -531,9 +534,14 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
         wave_grid: None,
         // Friction acts from the start of the dynamics, each spring unstretched where the statics
         // left its node (the statics are frictionless).
-        friction_anchor: (0..friction_nodes(model))
-            .map(|i| pl.base[3 * i] + u[3 * i])
-            .collect(),
+        friction_anchor: match friction_nodes(model) {
+            0 => Vec::new(),
+            k if k == n => (0..n).map(|i| pl.base[3 * i] + u[3 * i]).collect(),
+            _ => (0..3 * n)
+                .filter(|g| g % 3 != 2)
+                .map(|g| pl.base[g] + u[g])
+                .collect(),
+        },
     };
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);
@@ -915,6 +923,7 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
     if let Some(f) = model.seabed.as_ref().and_then(|s| s.friction) {
         loads::commit_friction(
             &f,
+            model,
             pl,
             &state.u,
             &ws.loads.seabed_force,

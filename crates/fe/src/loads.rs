@@ -24,7 +24,12 @@
 //!    once per converged step ([`commit_friction`]): a node that slid past `δ` drags its anchor to
 //!    `x − δ·sign(s)`, a node out of contact takes its anchor with it. The statics are
 //!    frictionless; friction acts from the start of the dynamics, each anchor where the statics
-//!    left its node.
+//!    left its node. **On a sloping mudline** (a profile) it acts along the local mudline's tangent
+//!    `t = (1, m)/√(1 + m²)` (`m` its slope under the node): the anchor is a point `a_i`, the
+//!    distance `s = t·(r_i − a_i)`, the force `F·t` and its tangent `(∂R/∂s)·t tᵀ`; a sliding node
+//!    drags its anchor to `r − δ·sign(s)·t`. Motion normal to the mudline (penetration) moves no
+//!    anchor, and crossing a kink of the profile changes `s` by at most `δ·(1 − cos Δα)`. The
+//!    tangent's change along the profile (zero between kinks) is left out of the tangent.
 //! 4. **Hydrodynamics** (Morison, per unit unstretched length, lumped at nodes): drag on the
 //!    velocity relative to the current `U(z)` and the waves, split along the node's tangent `t`,
 //!    `f = ½ρ Cd_n D |v_n| v_n + ½ρ Cd_a πD |v_t| v_t t`, its velocity derivative in `C` (its
@@ -389,6 +394,9 @@ fn add_friction(
     seabed_force: &[f64],
 ) {
     let (model, pl) = (m.line, m.placement);
+    if !model.mudline_profile.is_empty() {
+        return add_friction_on_profile(f, m, at, anchors, scale, asm, seabed_force);
+    }
     for (i, (&p, &a)) in seabed_force.iter().zip(anchors).enumerate() {
         let n = model.tributary[i] * p;
         if n <= 0.0 {
@@ -399,6 +407,40 @@ fn add_friction(
         asm.residual[3 * i] += r;
         if scale.with_k && k != 0.0 {
             asm.add_dof_tangent(model, 3 * i, scale.k * k);
+        }
+    }
+}
+
+/// [`add_friction`] on a profile: along each node's local mudline tangent, from its anchor point
+/// (`anchors` holds `x, z` per node).
+#[inline(never)]
+fn add_friction_on_profile(
+    f: &AxialFriction,
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    anchors: &[f64],
+    scale: TangentScale,
+    asm: &mut Assembler,
+    seabed_force: &[f64],
+) {
+    let (model, pl) = (m.line, m.placement);
+    for (i, (&p, a)) in seabed_force.iter().zip(anchors.chunks_exact(2)).enumerate() {
+        let n = model.tributary[i] * p;
+        if n <= 0.0 {
+            continue;
+        }
+        let (x, z) = (
+            pl.base[3 * i] + at.u[3 * i],
+            pl.base[3 * i + 1] + at.u[3 * i + 1],
+        );
+        let (tx, tz) = model.mudline_tangent(x);
+        let s = tx * (x - a[0]) + tz * (z - a[1]);
+        let (r, k) = friction_response(f, n, s);
+        asm.residual[3 * i] += r * tx;
+        asm.residual[3 * i + 1] += r * tz;
+        if scale.with_k && k != 0.0 {
+            let k = scale.k * k;
+            asm.add_node_block(i, k * tx * tx, k * tx * tz, k * tz * tz);
         }
     }
 }
@@ -418,14 +460,30 @@ pub fn friction_response(f: &AxialFriction, n: f64, s: f64) -> (f64, f64) {
 
 /// Commits each node's friction anchor at a converged state (`u`, the seabed force per length
 /// `seabed_force` there): a node that slid further than `δ` from its anchor drags it to
-/// `x − δ·sign(s)`; a node out of contact takes it along (`a = x`); otherwise it stays.
+/// `x − δ·sign(s)`; a node out of contact takes it along (`a = x`); otherwise it stays. On a
+/// profile the same along the local mudline (`anchors` holds `x, z` per node, see the module docs).
 pub fn commit_friction(
     f: &AxialFriction,
+    model: &LineModel,
     pl: &Placement,
     u: &[f64],
     seabed_force: &[f64],
     anchors: &mut [f64],
 ) {
+    if !model.mudline_profile.is_empty() {
+        for (i, (a, &p)) in anchors.chunks_exact_mut(2).zip(seabed_force).enumerate() {
+            let (x, z) = (pl.base[3 * i] + u[3 * i], pl.base[3 * i + 1] + u[3 * i + 1]);
+            let (tx, tz) = model.mudline_tangent(x);
+            let s = tx * (x - a[0]) + tz * (z - a[1]);
+            if p <= 0.0 {
+                (a[0], a[1]) = (x, z);
+            } else if s.abs() > f.mobilisation {
+                let d = f.mobilisation.copysign(s);
+                (a[0], a[1]) = (x - d * tx, z - d * tz);
+            }
+        }
+        return;
+    }
     for (i, (a, &p)) in anchors.iter_mut().zip(seabed_force).enumerate() {
         let x = pl.base[3 * i] + u[3 * i];
         let s = x - *a;
@@ -881,6 +939,126 @@ mod tests {
         println!("friction: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
         assert!(kd.iter().any(|x| *x != 0.0));
+    }
+
+    /// Friction on a sloping mudline acts along its tangent: on a profile of two slopes (−6° and
+    /// +4°, the kink between nodes), nodes in stick and in slip, `K·d` against central differences
+    /// along each node's mudline tangent (the coupling through the normal force is left out of
+    /// the tangent by design, so the directions keep the penetration), to 1e-6 of the largest
+    /// entry; and the force: `μN·s/δ` (stick) or `μN` (slip) along the tangent.
+    #[test]
+    fn sloped_friction_acts_along_the_mudline_and_its_tangent_matches() {
+        let linear = Law::Linear(LinearSeabed::new(0.3, 2e5, 0.0).expect("linear"));
+        let (mut model, _) = line(linear);
+        let f = AxialFriction {
+            mu: 0.6,
+            mobilisation: 0.01,
+        };
+        if let Some(sb) = model.seabed.as_mut() {
+            sb.friction = Some(f);
+        }
+        let (t1, t2) = (6f64.to_radians().tan(), 4f64.to_radians().tan());
+        let model =
+            model.with_mudline_profile(vec![(-5.0, 9.5 * t1), (4.5, 0.0), (20.0, 15.5 * t2)]);
+        // Each node pressed in by 1–25 mm normal to its slope, at its own mudline.
+        let mut q = vec![0.0; 3 * N];
+        for i in 0..N {
+            let x = i as f64;
+            let (zm, m) = model.mudline_at(x);
+            let c = 1.0 / (1.0 + m * m).sqrt();
+            q[3 * i] = x;
+            q[3 * i + 1] = zm + (0.15 - (0.001 + 0.0024 * i as f64)) / c;
+            q[3 * i + 2] = m.atan();
+        }
+        let pl = Placement::new(&q);
+        let dist = |i: usize| [0.004, -0.004, 0.03, -0.03][i % 4];
+        // Anchors: stick and slip in turn, behind each node along its tangent.
+        let anchors: Vec<f64> = (0..N)
+            .flat_map(|i| {
+                let (tx, tz) = model.mudline_tangent(q[3 * i]);
+                [q[3 * i] - dist(i) * tx, q[3 * i + 1] - dist(i) * tz]
+            })
+            .collect();
+        let committed: Vec<SeabedHistory> = (0..N)
+            .map(|_| model.seabed.as_ref().expect("sb").seabed.untouched())
+            .collect();
+        let zero = vec![0.0; 3 * N];
+        let run = |u: &[f64], with_k: bool| {
+            let mut asm = Assembler::new(&model).expect("assembler");
+            let mut scratch = LoadScratch::new(N);
+            asm.residual.fill(0.0);
+            asm.k.clear();
+            let m = LoadModel {
+                line: &model,
+                placement: &pl,
+                hydro: None,
+                structural_damping: None,
+            };
+            let pass = SeabedPass::Trial {
+                committed: &committed,
+                anchors: &anchors,
+                dt: 0.1,
+                memo: &mut [],
+                keep: None,
+            };
+            let at = Iterate {
+                u,
+                v: &zero,
+                wave_kin: &[],
+            };
+            let scale = TangentScale {
+                with_k,
+                k: 1.0,
+                c_v: 0.0,
+            };
+            assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
+            (asm, scratch)
+        };
+        // The force along the tangent: the residual less the contact's (along the normal).
+        let (asm, scratch) = run(&zero, false);
+        for i in 0..N {
+            let l_p = model.tributary[i] * scratch.seabed_force[i];
+            let (tx, tz) = model.mudline_tangent(q[3 * i]);
+            let along = asm.residual[3 * i] * tx + asm.residual[3 * i + 1] * tz;
+            let want = if dist(i).abs() <= f.mobilisation {
+                f.mu * l_p * dist(i) / f.mobilisation
+            } else {
+                f.mu * l_p * dist(i).signum()
+            };
+            assert!(l_p > 0.0, "node {i} in contact");
+            assert!(
+                (along - want).abs() <= 1e-9 * want.abs(),
+                "node {i}: {along} vs {want}"
+            );
+        }
+        let mut d = vec![0.0; model.n_eq];
+        let mut dg = vec![0.0; 3 * N];
+        for i in 0..N {
+            let (tx, tz) = model.mudline_tangent(q[3 * i]);
+            let x = 0.5 + ((i * 7919) % 13) as f64 / 13.0;
+            for (g, c) in [(3 * i, tx), (3 * i + 1, tz)] {
+                if let Some(e) = model.equation[g] {
+                    d[e] = x * c;
+                    dg[g] = x * c;
+                }
+            }
+        }
+        let (asm, _) = run(&zero, true);
+        let mut kd = vec![0.0; model.n_eq];
+        asm.k.mul(&d, &mut kd);
+        let h = 1e-7;
+        let residual = |sgn: f64| {
+            let u: Vec<f64> = dg.iter().map(|x| sgn * h * x).collect();
+            let (a, _) = run(&u, false);
+            let mut r = vec![0.0; model.n_eq];
+            a.gather(&model, &mut r);
+            r
+        };
+        let (rp, rm) = (residual(1.0), residual(-1.0));
+        let fd = central_difference(&rp, &rm, h);
+        let w = worst(&kd, &fd);
+        println!("friction on a slope: worst difference {w:.2e} of the largest entry");
+        assert!(w < 1e-6, "{w}");
     }
 
     /// The attached bodies' drag damping against central differences in the velocities (bodies

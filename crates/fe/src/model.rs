@@ -428,6 +428,15 @@ impl LineModel {
         (p[p.len() - 1].1, 0.0)
     }
 
+    /// The mudline's unit tangent `(1, m)/√(1 + m²)` at the horizontal position `x` (towards +x;
+    /// `(1, 0)` on a flat seabed), `m` its slope ([`LineModel::mudline_at`]).
+    #[inline]
+    pub fn mudline_tangent(&self, x: f64) -> (f64, f64) {
+        let m = self.mudline_at(x).1;
+        let c = 1.0 / (1.0 + m * m).sqrt();
+        (c, m * c)
+    }
+
     /// The Model with zones of other soil along the route (their nodes are assigned by
     /// [`LineModel::zoned_at`]).
     pub fn with_seabed_zones(mut self, zones: Vec<SeabedZone>) -> Self {

@@ -27,7 +27,7 @@
 
 use std::time::Instant;
 
-use crate::analytical::{CatenaryError, FreeCatenary, TouchdownCatenary};
+use crate::analytical::{CatenaryError, FreeCatenary, SlopedTouchdownCatenary, TouchdownCatenary};
 use crate::assembly::Assembler;
 pub use crate::assembly::{LineResults, Placement};
 use crate::environment::Hydro;
@@ -422,12 +422,17 @@ pub fn static_embedment_on(seabed: &Seabed, d: f64, w: f64) -> Option<f64> {
 pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>, StaticError> {
     enum Shape {
         Touchdown(TouchdownCatenary, f64, f64),
+        Sloped(SlopedTouchdownCatenary, f64, f64),
         Free(FreeCatenary),
     }
     impl Shape {
         fn point(&self, s: f64) -> (f64, f64, f64) {
             match self {
                 Shape::Touchdown(c, x0, z0) => {
+                    let (x, z, th) = c.point(s);
+                    (x0 + x, z0 + z, th)
+                }
+                Shape::Sloped(c, x0, z0) => {
                     let (x, z, th) = c.point(s);
                     (x0 + x, z0 + z, th)
                 }
@@ -456,10 +461,32 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
         .seabed
         .as_ref()
         .map(|_| model.mudline_at(xa).0 + 0.5 * model.node_od[n - 1] - emb);
+    // On a profile sloping at the touchdown: the catenary tangent to the plane of the mudline's
+    // slope there (`SlopedTouchdownCatenary`), the touchdown re-estimated twice from the flat one's.
+    // The laid nodes are draped onto the profile below. A flat mudline at the touchdown: none.
+    let sloped = |mut x_td: f64, length: f64| -> Option<(Shape, f64)> {
+        let mut found = None;
+        for _ in 0..3 {
+            let (zm, m) = model.mudline_at(x_td);
+            if m == 0.0 {
+                return found;
+            }
+            let alpha = -m.atan();
+            let z_td = zm + (0.5 * model.node_od[n - 1] - emb) / alpha.cos();
+            let z_plane = z_td + alpha.tan() * (x_td - xa);
+            let c = SlopedTouchdownCatenary::solve(w, alpha, span, zt - z_plane, length).ok()?;
+            x_td = xa + c.touchdown_x();
+            found = Some((Shape::Sloped(c, xa, z_plane), c.a));
+        }
+        found
+    };
     let shape_for = |length: f64| -> Result<(Shape, f64), StaticError> {
         if let Some(z_contact) = contact {
             if let Ok(c) = TouchdownCatenary::solve(w, span, zt - z_contact, length) {
                 let x_tdp = xt - c.point(0.0).0;
+                if let Some(s) = sloped(x_tdp, length) {
+                    return Ok(s);
+                }
                 return Ok((Shape::Touchdown(c, x_tdp, z_contact), c.a));
             }
         }
@@ -515,7 +542,17 @@ pub fn catenary_seed(model: &LineModel, ends: &EndPositions) -> Result<Vec<f64>,
         };
         q[3 * i + 2] = th;
     }
-    if let Some(zc) = contact {
+    if let Shape::Sloped(c, ..) = &shape.0 {
+        // The laid nodes from the plane onto the profile.
+        for i in 0..n {
+            if arcs[i] >= c.suspended {
+                let (zm, m) = model.mudline_at(q[3 * i]);
+                let cos = 1.0 / (1.0 + m * m).sqrt();
+                q[3 * i + 1] = zm + (0.5 * model.node_od[i] - emb) / cos;
+                q[3 * i + 2] = -std::f64::consts::PI + m.atan();
+            }
+        }
+    } else if let Some(zc) = contact {
         drape(model, &mut q, zc, emb);
     }
     q[0] = xt;

@@ -1,7 +1,9 @@
 //! Verification of the static solver against the analytical anchors of `docs/cases.md` §5.
 //! Each test states its source and tolerance.
 
-use catena_fe::analytical::{touchdown_moment, ElasticTouchdownCatenary, TouchdownCatenary};
+use catena_fe::analytical::{
+    touchdown_moment, ElasticTouchdownCatenary, SlopedTouchdownCatenary, TouchdownCatenary,
+};
 use catena_fe::beam::Section;
 use catena_fe::model::{LineModel, LineSpec, SeabedContact, Segment, Support};
 use catena_fe::statics::{
@@ -106,6 +108,70 @@ fn inextensible_catenary_small_ei() {
     assert!(rel(f.s.horizontal_tension, c.horizontal_tension()) < 2e-3);
     let tdp = f.s.touchdown_arc.expect("touches down");
     assert!(rel(tdp, c.suspended) < 2e-3, "{tdp} {}", c.suspended);
+}
+
+/// A heavy chain on a sloping seabed (issue 28): the SCR of the test above (EI 1 kN·m², EA ×10, a
+/// seabed of 1e8 N/m/m²) on a mudline rising at 3° towards the anchor, against the inextensible
+/// catenary tangent to the slope ([`SlopedTouchdownCatenary`]): top tension, H at the top, the
+/// touchdown's arc length (shifted along the line by the slope: 1220.0 m against the flat 1167.7 m)
+/// and the anchor's tension (the touchdown's plus the laid line's down-slope weight) within 0.1 %
+/// (measured: 0.02 % at most). The static seed is the same sloped catenary, so Newton takes 5
+/// iterations. With the contact vertical instead of normal to the slope the anchor tension is 8 %
+/// low (the seabed then carries the laid line's down-slope weight).
+#[test]
+fn heavy_chain_on_a_slope_against_the_sloped_catenary() {
+    let alpha = 3f64.to_radians();
+    let (k, od) = (1e8, OD);
+    let m = scr(linear(k), EA * 10.0, 1e3, 0.5).with_mudline_profile(vec![
+        (-200.0, 200.0 * alpha.tan()),
+        (2000.0, -2000.0 * alpha.tan()),
+    ]);
+    // The anchor's centre on the slope: D/2 less the normal penetration w·cos α/(kD), along the
+    // normal.
+    let pen = W * alpha.cos() / (k * od);
+    let z_contact = (0.5 * od - pen) / alpha.cos();
+    let ends = EndPositions {
+        top: (933.79, 980.0),
+        anchor: (0.0, z_contact),
+    };
+    let q = catenary_seed(&m, &ends).expect("seed");
+    let pl = Placement::new(&q);
+    let mut u = vec![0.0; q.len()];
+    let mut ws = StaticWorkspace::new(&m).expect("workspace");
+    let rep = solve(&m, &pl, &mut u, &mut ws, &StaticOptions::default()).expect("converges");
+    let sb = m.seabed.expect("seabed");
+    let r = line_results(&m, &pl, &u, &mut ws, |_, p| sb.seabed.backbone(p).total());
+    let n3 = ws.asm.residual.len();
+    let (ax, az) = (ws.asm.residual[n3 - 3], ws.asm.residual[n3 - 2]);
+    let s = summarise(
+        &m.arc,
+        &r,
+        [(ws.asm.residual[0], ws.asm.residual[1]), (ax, az)],
+    );
+    let c = SlopedTouchdownCatenary::solve(W, alpha, 933.79, 980.0 - z_contact, 1600.0)
+        .expect("catenary");
+    let flat = TouchdownCatenary::solve(W, 933.79, 980.0 - z_contact, 1600.0).expect("flat");
+    let anchor = ax.hypot(az);
+    let tdp = s.touchdown_arc.expect("touches down");
+    println!(
+        "chain on a 3° slope ({} Newton iterations): T_top FE {:.1} / analytic {:.1} N; H {:.1} / {:.1} N; TDP {tdp:.3} / {:.3} m (flat {:.3} m); anchor {anchor:.1} / {:.1} N",
+        rep.iterations,
+        s.top_tension,
+        c.top_tension(),
+        s.horizontal_tension,
+        c.horizontal_tension(),
+        c.suspended,
+        flat.suspended,
+        c.anchor_tension()
+    );
+    assert!(rel(s.top_tension, c.top_tension()) < 1e-3);
+    assert!(rel(s.horizontal_tension, c.horizontal_tension()) < 1e-3);
+    assert!(rel(tdp, c.suspended) < 1e-3, "{tdp} {}", c.suspended);
+    assert!(rel(anchor, c.anchor_tension()) < 1e-3, "{anchor}");
+    assert!(
+        tdp - flat.suspended > 30.0,
+        "the slope shifts the touchdown"
+    );
 }
 
 /// cases.md §5: the elastic catenary (Irvine, grounded part stretched by H/EA) against the FE with
