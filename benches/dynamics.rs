@@ -239,5 +239,41 @@ fn sections(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, waves, friction, sections);
+/// What the strength check costs a storm run: storm 23 on the fatigue mesh (861 nodes, 400 wave
+/// components, its fatigue counting on) for 30 s (600 steps, the 10 s ramp shortened to fit), run
+/// through `run::run` with its built-in outputs, without and with a DNV `[design_check]` from t = 0
+/// (every node, every step). The statics are solved once, outside the timing.
+fn design_check(c: &mut Criterion) {
+    use catena::scene::riser::RiserScene;
+    use catena::scene::DirResolver;
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
+    let files = DirResolver::beside(&case);
+    let text = std::fs::read_to_string(&case)
+        .expect("case")
+        .replace("duration = 1800.0", "duration = 30.0")
+        .replace("envelope_start = 200.0", "envelope_start = 10.0")
+        .replace("start = 200.0", "start = 10.0")
+        .replace("ramp = 100.0", "ramp = 10.0");
+    let with_check = format!(
+        "{text}\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n"
+    );
+    let mut g = c.benchmark_group("design_check");
+    g.sample_size(10);
+    for (name, text) in [
+        ("storm23_30s", &text),
+        ("storm23_30s_design_check", &with_check),
+    ] {
+        let scene = RiserScene::parse("storm23", text, &files).expect("scene");
+        let st = catena::statics::solve(scene).expect("statics");
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                catena::run::run(st.clone(), &mut [], catena::run::RunOptions::default())
+                    .expect("run")
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, waves, friction, sections, design_check);
 criterion_main!(benches);

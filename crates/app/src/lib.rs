@@ -19,6 +19,8 @@
 
 pub mod checkpoint;
 pub mod convergence;
+pub mod design;
+pub mod design_observer;
 pub mod error;
 pub mod fatigue;
 pub mod fatigue_observer;

@@ -13,6 +13,7 @@ use std::any::Any;
 
 use catena_fe::dynamics::DynamicModel;
 
+use crate::design_observer::DesignCheck;
 use crate::fatigue_observer::Fatigue;
 use crate::observe::{Envelopes, Gauges, Observer, TopHistory};
 use crate::scene::riser::DynamicSpec;
@@ -80,6 +81,16 @@ pub const BUILTINS: &[Registration] = &[
             let n = s.model.line.nodes();
             let f = s.spec.fatigue.clone()?;
             Some(Box::new(Fatigue::new(f, n)))
+        },
+    },
+    Registration {
+        name: "design_check",
+        build: |s| {
+            let c = s.spec.design_check?;
+            let line = &s.model.line;
+            let elements: Vec<(f64, f64)> =
+                line.elements.iter().map(|e| (e.l0, e.section.ei)).collect();
+            Some(Box::new(DesignCheck::new(c, &elements, &line.arc)))
         },
     },
 ];

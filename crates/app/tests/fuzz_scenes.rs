@@ -31,6 +31,7 @@ const CASES: &[&str] = &[
     "scr1000/static-rq-slope-2deg",
     "lazy-wave/heave",
     "scr1000/static-rq-touchdown-joint",
+    "scr1000/design-100yr-rq",
 ];
 
 const HOSTILE: &[&str] = &[

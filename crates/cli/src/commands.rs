@@ -154,11 +154,15 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     drop(rec);
     let t_outputs = Instant::now();
     h5::write_fatigue(&h5p, &r)?;
+    h5::write_design_check(&h5p, &r)?;
     h5::write_ranges(&h5p, &r)?;
     let js = out.join("summary.json");
     write_json(&js, &report::dynamic_json(&r))?;
     plot::dynamic(&out.join("dynamic.png"), &r)?;
     plot::ranges(&out.join("ranges.png"), &r)?;
+    if r.output::<catena::design_observer::DesignCheck>().is_some() {
+        plot::design_check(&out.join("design_check.png"), &r)?;
+    }
     if !r.spec.gauges.is_empty() {
         plot::gauges(&out.join("gauges.png"), &r)?;
     }

@@ -161,6 +161,55 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "seabed.friction.mobilisation",
     ),
     (
+        "a design check of an unknown code",
+        "scr1000/design-100yr-linear",
+        "code = \"dnv-st-f201\"",
+        "code = \"dnv-os-f999\"",
+        "design_check.code",
+    ),
+    (
+        "a tensile strength below the yield strength",
+        "scr1000/design-100yr-linear",
+        "smts = 531.0e6",
+        "smts = 400.0e6",
+        "design_check.smts",
+    ),
+    (
+        "a corrosion allowance that leaves no wall",
+        "scr1000/design-100yr-linear",
+        "corrosion_allowance = 0.003",
+        "corrosion_allowance = 0.0254",
+        "design_check.corrosion_allowance",
+    ),
+    (
+        "a negative design pressure",
+        "scr1000/design-100yr-linear",
+        "internal_pressure = 15.0e6",
+        "internal_pressure = -15.0e6",
+        "design_check.internal_pressure",
+    ),
+    (
+        "an unknown safety class",
+        "scr1000/design-100yr-linear",
+        "safety_class = \"normal\"",
+        "safety_class = \"extreme\"",
+        "design_check.safety_class",
+    ),
+    (
+        "a design check without the pipe's wall",
+        "benchmarks/scr-heave",
+        "[dynamic]",
+        "[design_check]\ncode = \"api-std-2rd\"\nsmys = 448e6\nsmts = 531e6\n\n[dynamic]",
+        "line.wall",
+    ),
+    (
+        "a design check without a dynamic run",
+        "scr1000/static-rq",
+        "[seabed]",
+        "[design_check]\ncode = \"api-std-2rd\"\nsmys = 448e6\nsmts = 531e6\n\n[seabed]",
+        "design_check",
+    ),
+    (
         "heave nan",
         "benchmarks/scr-heave",
         "heave = 2.0",
@@ -363,7 +412,13 @@ fn every_bad_input_is_refused_naming_its_file_and_key() {
         let path = src.with_file_name(format!("bad-input-{i}.toml"));
         let path = dir.join(path.file_name().expect("name"));
         std::fs::write(&path, text.replacen(from, to, 1)).expect("write");
-        // Files the case names (RAO tables) are not needed: these cases name none.
+        // Files the case names (RAO tables) beside it, as in `cases/`.
+        for f in std::fs::read_dir(src.parent().expect("dir")).expect("dir") {
+            let f = f.expect("entry").path();
+            if f.extension().is_some_and(|e| e == "csv") {
+                std::fs::copy(&f, dir.join(f.file_name().expect("name"))).expect("copy");
+            }
+        }
         match commands::check(&path) {
             Ok(out) => failures.push(format!("{name}: accepted:\n{out}")),
             Err(e) => {

@@ -260,6 +260,9 @@ pub struct Recorder {
     /// With waves: `(x where the elevation is recorded, static top (x, z), (sin θ_top, cos θ_top))`.
     sea: Option<(f64, [f64; 2], [f64; 2])>,
     has_sea: bool,
+    /// With a design check: its evaluator (set when the run starts) and the step's utilisation.
+    design: Option<(catena::design::Evaluator, Vec<f64>)>,
+    has_design: bool,
     last_flush: Instant,
     /// Time the run's thread spent recording (buffering, handing over, waiting), s.
     busy: f64,
@@ -387,6 +390,29 @@ impl Recorder {
             "0 not_in_contact, 1 initial_penetration, 2 uplift, 3 repenetration",
         )
         .map_err(&err)?;
+        if let Some(c) = statics
+            .scene
+            .dynamic
+            .as_ref()
+            .and_then(|d| d.design_check.as_ref())
+        {
+            let dg = file.create_group("design_check").map_err(&err)?;
+            let ds = dg.new_dataset::<f64>().chunk((chunk, n));
+            let ds = if deflate && compress {
+                ds.shuffle().deflate(DEFLATE)
+            } else {
+                ds
+            };
+            let ds = ds.shape((0.., n)).create("utilisation").map_err(&err)?;
+            attr(&ds, "units", "1 (the criterion's left side; above 1 fails)").map_err(&err)?;
+            attr(&ds, "code", c.code.name()).map_err(&err)?;
+            attr(
+                &ds,
+                "convention",
+                "one row per record of /dynamic/time, one column per node of /dynamic/arc",
+            )
+            .map_err(&err)?;
+        }
         file.flush().map_err(&err)?;
         drop((g, md));
         Self::from_file(path, file, n, gauges)
@@ -427,6 +453,10 @@ impl Recorder {
                 });
             }
             fields.push(ds);
+        }
+        let has_design = file.link_exists("design_check");
+        if has_design {
+            fields.push(file.dataset("design_check/utilisation").map_err(&err)?);
         }
         let has_sea = g.link_exists("wave_elevation");
         if has_sea {
@@ -493,6 +523,8 @@ impl Recorder {
             gauge_arcs: Vec::new(),
             sea: None,
             has_sea,
+            design: None,
+            has_design,
             last_flush: Instant::now(),
             busy: 0.0,
         })
@@ -523,6 +555,16 @@ impl Recorder {
         }
         for (buf, src) in self.fields.iter_mut().zip(record_fields(r)) {
             buf.extend_from_slice(src);
+        }
+        if self.has_design {
+            let buf = self.fields.last_mut().expect("the utilisation's buffer");
+            match &mut self.design {
+                Some((ev, u)) => {
+                    ev.along(r, u);
+                    buf.extend_from_slice(u);
+                }
+                None => buf.extend(std::iter::repeat_n(f64::NAN, self.n)),
+            }
         }
         self.modes.extend_from_slice(&r.mode);
         self.rows += 1;
@@ -662,6 +704,10 @@ impl Observer for Recorder {
         restarted: bool,
     ) -> Result<(), AppError> {
         self.gauge_arcs = ctx.spec.gauges.iter().map(|g| g.arc).collect();
+        if self.has_design {
+            self.design = catena::design_observer::evaluator_of(ctx)
+                .map(|ev| (ev, vec![0.0; ctx.model.line.nodes()]));
+        }
         if self.has_sea {
             let st = &ctx.statics;
             let x_ref = ctx
@@ -703,6 +749,12 @@ impl Observer for Recorder {
                 "dynamic/seabed_mode".into(),
                 vec![Some("dynamic/time"), Some("dynamic/arc")],
             ));
+            if self.has_design {
+                dims.push((
+                    "design_check/utilisation".into(),
+                    vec![Some("dynamic/time"), Some("dynamic/arc")],
+                ));
+            }
             let mut one_d: Vec<String> = SERIES[1..]
                 .iter()
                 .map(|(name, _)| format!("dynamic/{name}"))
@@ -860,6 +912,89 @@ pub fn dimension_scales(
             .create("REFERENCE_LIST")?
             .write(&v)?;
     }
+    Ok(())
+}
+
+/// Writes the design check's per-node results into `/design_check` (beside the per-record
+/// `utilisation` the recorder wrote): `utilisation_max`, `time_of_max`, `term_of_max` (an index
+/// into the attribute `terms`), `least_effective_tension`, `time_of_least` and `euler_load`, with
+/// units and the code's name and conventions as attributes. Nothing without a check.
+pub fn write_design_check(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
+    let Some(d) = r.output::<catena::design_observer::DesignCheck>() else {
+        return Ok(());
+    };
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    let g = if file.link_exists("design_check") {
+        file.group("design_check").map_err(&err)?
+    } else {
+        file.create_group("design_check").map_err(&err)?
+    };
+    for name in [
+        "utilisation_max",
+        "time_of_max",
+        "term_of_max",
+        "least_effective_tension",
+        "time_of_least",
+        "euler_load",
+    ] {
+        if g.link_exists(name) {
+            g.unlink(name).map_err(&err)?;
+        }
+    }
+    // A restart into the same directory rewrites them.
+    for name in g.attr_names().map_err(&err)? {
+        g.delete_attr(&name).map_err(&err)?;
+    }
+    attr(&g, "code", d.spec.code.name()).map_err(&err)?;
+    num_attr(&g, "start", d.spec.start).map_err(&err)?;
+    attr(
+        &g,
+        "convention",
+        "utilisation: the code's criterion (DNV-ST-F201 combined loading with functional = the static state, environmental = the increment over it; API STD 2RD von Mises over C*SMYS); above 1 fails",
+    )
+    .map_err(&err)?;
+    vector(&g, "utilisation_max", &d.max, "1").map_err(&err)?;
+    vector(&g, "time_of_max", &d.time_of_max, "s").map_err(&err)?;
+    let terms: Vec<u8> = d.term_of_max.iter().map(|t| t.index()).collect();
+    let ds = g
+        .new_dataset_builder()
+        .with_data(&terms)
+        .create("term_of_max")
+        .map_err(&err)?;
+    let names: Vec<String> = catena::design::Term::ALL
+        .iter()
+        .enumerate()
+        .map(|(i, t)| format!("{i} {}", t.name()))
+        .collect();
+    attr(&ds, "terms", &names.join(", ")).map_err(&err)?;
+    let least: Vec<f64> = d
+        .least_tension
+        .iter()
+        .map(|t| if *t == f64::MAX { f64::NAN } else { *t })
+        .collect();
+    vector(&g, "least_effective_tension", &least, "N").map_err(&err)?;
+    vector(&g, "time_of_least", &d.time_of_least, "s").map_err(&err)?;
+    vector(
+        &g,
+        "euler_load",
+        &d.euler,
+        "N (pi^2 EI / L^2, the smaller of the adjacent elements')",
+    )
+    .map_err(&err)?;
+    let dims: Vec<(String, Vec<Option<&str>>)> = [
+        "utilisation_max",
+        "time_of_max",
+        "term_of_max",
+        "least_effective_tension",
+        "time_of_least",
+        "euler_load",
+    ]
+    .iter()
+    .map(|n| (format!("design_check/{n}"), vec![Some("dynamic/arc")]))
+    .collect();
+    dimension_scales(&file, &dims).map_err(&err)?;
+    file.flush().map_err(&err)?;
     Ok(())
 }
 

@@ -842,6 +842,150 @@ pub fn ranges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     Ok(())
 }
 
+/// The design check (`design_check.png`): each node's largest utilisation over the run with the
+/// static state's (functional only) and the limit 1.0, over the whole line and around the touchdown
+/// zone; beneath, each node's least effective tension with the static tension (compression below 0).
+pub fn design_check(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
+    let Some(d) = r.output::<catena::design_observer::DesignCheck>() else {
+        return Ok(());
+    };
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let root = BitMapBackend::new(path, (1800, 1100)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let worst = d
+        .worst()
+        .map(|(i, u)| {
+            format!(
+                "largest {u:.3} at {:.1} m, t = {:.1} s",
+                d.arc[i], d.time_of_max[i]
+            )
+        })
+        .unwrap_or_default();
+    let title = format!(
+        "{} — design check {} over t ≥ {} s: {worst}",
+        r.statics.scene.title,
+        d.spec.code.name(),
+        d.spec.start
+    );
+    let root = root.titled(&title, ("sans-serif", 18)).map_err(&err)?;
+    let areas = root.split_evenly((2, 2));
+    let arc = &r.model.line.arc;
+    let st = &r.statics.results;
+    let line = |v: &[f64], s: f64| -> Vec<(f64, f64)> {
+        arc.iter()
+            .zip(v)
+            .filter(|(_, y)| y.is_finite() && **y != f64::MAX)
+            .map(|(a, y)| (*a, y * s))
+            .collect()
+    };
+    let static_u: Vec<f64> = match &d.evaluator {
+        Some(ev) => {
+            let mut u = vec![0.0; arc.len()];
+            ev.along(st, &mut u);
+            u
+        }
+        None => Vec::new(),
+    };
+    let (red, blue, grey, black) = (
+        RGBColor(180, 30, 30),
+        RGBColor(20, 90, 200),
+        RGBColor(120, 120, 120),
+        RGBColor(0, 0, 0),
+    );
+    let level = |y: f64| vec![(arc[0], y), (arc[arc.len() - 1], y)];
+    let utilisation = || {
+        vec![
+            Labelled {
+                points: line(&d.max, 1.0),
+                colour: blue,
+                label: "largest over the run",
+            },
+            Labelled {
+                points: line(&static_u, 1.0),
+                colour: grey,
+                label: "static (functional only)",
+            },
+            Labelled {
+                points: level(1.0),
+                colour: red,
+                label: "limit 1.0",
+            },
+        ]
+    };
+    let tension = || {
+        vec![
+            Labelled {
+                points: line(&d.least_tension, 1e-3),
+                colour: blue,
+                label: "least over the run",
+            },
+            Labelled {
+                points: line(&st.tension, 1e-3),
+                colour: grey,
+                label: "static",
+            },
+            Labelled {
+                points: level(0.0),
+                colour: black,
+                label: "zero",
+            },
+        ]
+    };
+    let (markers, zoom) = touchdown_marks(r);
+    // The zoom takes in the node of the largest utilisation (often a little above the touchdown
+    // zone, in the sag bend).
+    let zoom = match (zoom, d.worst()) {
+        (Some((a, b)), Some((i, _))) => Some((a.min(d.arc[i] - 10.0), b.max(d.arc[i] + 10.0))),
+        (z, _) => z,
+    };
+    let marks: Vec<(f64, &str, RGBColor)> = markers.iter().map(|(x, l, c)| (*x, *l, *c)).collect();
+    let whole: Vec<(f64, &str, RGBColor)> = whole_line_marks(&markers)
+        .iter()
+        .map(|(x, l, c)| (*x, *l, *c))
+        .collect();
+    let xs = "arc length from the top (m)";
+    legend_panel(
+        &areas[0],
+        "utilisation along the line",
+        (xs, "utilisation (1)"),
+        &utilisation(),
+        &whole,
+        None,
+    )
+    .map_err(&perr)?;
+    legend_panel(
+        &areas[1],
+        "utilisation around the touchdown zone and the largest",
+        (xs, "utilisation (1)"),
+        &utilisation(),
+        &marks,
+        zoom,
+    )
+    .map_err(&perr)?;
+    legend_panel(
+        &areas[2],
+        "least effective tension along the line",
+        (xs, "T_e (kN)"),
+        &tension(),
+        &whole,
+        None,
+    )
+    .map_err(&perr)?;
+    legend_panel(
+        &areas[3],
+        "least effective tension around the touchdown zone",
+        (xs, "T_e (kN)"),
+        &tension(),
+        &marks,
+        zoom,
+    )
+    .map_err(&perr)?;
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
 /// Envelopes and ranges along the line, and the top tension history.
 pub fn dynamic(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
     init_fonts();

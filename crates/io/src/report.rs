@@ -170,6 +170,9 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
     if let Some(f) = &r.fatigue {
         js["fatigue"] = fatigue_json(r, f);
     }
+    if let Some(d) = r.output::<catena::design_observer::DesignCheck>() {
+        js["design_check"] = design_check_json(d);
+    }
     let e = &r.envelopes;
     js["dynamic"] = json!({
         "completed": r.completed(),
@@ -328,10 +331,65 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             }
         }
     }
+    if let Some(d) = r.output::<catena::design_observer::DesignCheck>() {
+        if let Some((i, u)) = d.worst() {
+            let _ = writeln!(
+                t,
+                "  design check ({}, from {} s): largest utilisation {u:.4} at arc length {:.2} m, t = {:.2} s ({} dominant): {}",
+                d.spec.code.name(),
+                d.spec.start,
+                d.arc[i],
+                d.time_of_max[i],
+                d.term_of_max[i].name(),
+                if u <= 1.0 { "passes" } else { "FAILS" }
+            );
+        }
+        let c = d.compression();
+        if let Some(worst) = c
+            .iter()
+            .min_by(|a, b| a.least_tension.total_cmp(&b.least_tension))
+        {
+            let _ = writeln!(
+                t,
+                "  WARNING: compression beyond the element Euler load at {} nodes (arc {:.2} to {:.2} m); the worst {:.2} kN at arc length {:.2} m, t = {:.2} s (Euler load {:.2} kN)",
+                c.len(),
+                c[0].arc,
+                c[c.len() - 1].arc,
+                worst.least_tension / 1e3,
+                worst.arc,
+                worst.time,
+                worst.euler_load / 1e3
+            );
+        }
+    }
     if let Some(s) = &r.stop {
         let _ = writeln!(t, "  STOPPED EARLY at t = {:.6} s: {s}", r.t_reached);
     }
     t
+}
+
+/// The design check section of `summary.json`: the code, the largest utilisation, where, when and
+/// its dominant term, pass or fail, each node's largest utilisation and least effective tension,
+/// and the nodes in compression beyond their element's Euler load.
+pub fn design_check_json(d: &catena::design_observer::DesignCheck) -> Value {
+    let worst = d.worst();
+    let least: Vec<f64> = d
+        .least_tension
+        .iter()
+        .map(|t| if *t == f64::MAX { f64::NAN } else { *t })
+        .collect();
+    json!({
+        "code": d.spec.code.name(),
+        "start": d.spec.start,
+        "max_utilisation": worst.map(|(_, u)| num(u)),
+        "max_utilisation_arc": worst.map(|(i, _)| d.arc[i]),
+        "max_utilisation_time": worst.map(|(i, _)| d.time_of_max[i]),
+        "dominant_term": worst.map(|(i, _)| d.term_of_max[i].name()),
+        "passes": worst.map(|(_, u)| u <= 1.0),
+        "utilisation_max": nums(&d.max),
+        "least_effective_tension": nums(&least),
+        "compression": d.compression(),
+    })
 }
 
 const YEAR: f64 = 365.25 * 86400.0;

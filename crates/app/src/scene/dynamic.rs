@@ -10,6 +10,7 @@ use super::checks::{positive, Site};
 use super::sea::{vessel_of, waves_of};
 use super::tables::*;
 use super::{invalid, Resolver};
+use crate::design::{safety_class_factor, Code, DesignSpec};
 use crate::error::SceneError;
 use crate::fatigue::sn::SnCurve;
 use crate::fatigue::stress::{Fibre, PipeSection};
@@ -45,6 +46,8 @@ pub struct DynamicSpec {
     pub structural_damping: Option<f64>,
     /// Fatigue counting (`[fatigue]`), if any.
     pub fatigue: Option<FatigueSpec>,
+    /// The strength check (`[design_check]`), if any.
+    pub design_check: Option<DesignSpec>,
     /// The pipe's section for wall tension and stress range graphs: `[fatigue]`'s, or from
     /// `line.wall` and `line.contents_density` (no internal pressure) when both are given.
     pub section: Option<PipeSection>,
@@ -133,6 +136,10 @@ pub(super) fn dynamic_spec(
         Some(t) => Some(fatigue_of(file, raw, t, d, site)?),
         None => None,
     };
+    let design_check = match &raw.design_check {
+        Some(t) => Some(design_check_of(file, raw, t, d)?),
+        None => None,
+    };
     let l = &raw.line;
     let section = fatigue
         .as_ref()
@@ -151,6 +158,7 @@ pub(super) fn dynamic_spec(
         });
     Ok(DynamicSpec {
         fatigue,
+        design_check,
         section,
         node_sections: Vec::new(),
         structural_damping,
@@ -573,5 +581,131 @@ fn fatigue_of(
             water_depth: site.water_depth,
         },
         nodes: Vec::new(),
+    })
+}
+
+/// `[design_check]` → the check's parameters (see `docs/scene.md`); its sections are checked with
+/// the line's (`riser.rs`).
+fn design_check_of(
+    file: &str,
+    raw: &RiserFile,
+    t: &DesignCheckTable,
+    d: &DynamicTable,
+) -> Result<DesignSpec, SceneError> {
+    let code = match t.code.as_str() {
+        "dnv-st-f201" => Code::DnvStF201,
+        "api-std-2rd" => Code::ApiStd2rd,
+        other => {
+            return Err(invalid(
+                file,
+                "design_check.code",
+                format!("\"dnv-st-f201\" or \"api-std-2rd\", got \"{other}\""),
+            ))
+        }
+    };
+    positive(file, "design_check.smys", t.smys, "a yield strength in Pa")?;
+    positive(
+        file,
+        "design_check.smts",
+        t.smts,
+        "a tensile strength in Pa",
+    )?;
+    if t.smts < t.smys {
+        return Err(invalid(
+            file,
+            "design_check.smts",
+            format!(
+                "a tensile strength no less than smys ({} Pa), got {} Pa",
+                t.smys, t.smts
+            ),
+        ));
+    }
+    if !(t.internal_pressure.is_finite() && t.internal_pressure >= 0.0) {
+        return Err(invalid(
+            file,
+            "design_check.internal_pressure",
+            "a pressure >= 0 Pa at the still water level",
+        ));
+    }
+    if !(t.corrosion_allowance.is_finite() && t.corrosion_allowance >= 0.0) {
+        return Err(invalid(
+            file,
+            "design_check.corrosion_allowance",
+            "a thickness >= 0 m",
+        ));
+    }
+    let class = t.safety_class.as_deref().unwrap_or("normal");
+    let gamma_sc = safety_class_factor(class).ok_or_else(|| {
+        invalid(
+            file,
+            "design_check.safety_class",
+            format!("\"low\", \"normal\" (or \"medium\") or \"high\", got \"{class}\""),
+        )
+    })?;
+    let lf = t.load_factors.unwrap_or(LoadFactorsTable {
+        functional: 1.1,
+        environmental: 1.3,
+    });
+    positive(
+        file,
+        "design_check.load_factors.functional",
+        lf.functional,
+        "a load factor",
+    )?;
+    positive(
+        file,
+        "design_check.load_factors.environmental",
+        lf.environmental,
+        "a load factor",
+    )?;
+    let factor = |key: &str, v: Option<f64>, default: f64, what: &str| {
+        let v = v.unwrap_or(default);
+        positive(file, &format!("design_check.{key}"), v, what).map(|_| v)
+    };
+    let design_factor = factor("design_factor", t.design_factor, 0.8, "a design factor")?;
+    let alpha_u = factor(
+        "material_strength_factor",
+        t.material_strength_factor,
+        0.96,
+        "a material strength factor",
+    )?;
+    let alpha_fab = factor(
+        "fabrication_factor",
+        t.fabrication_factor,
+        1.0,
+        "a fabrication factor",
+    )?;
+    let ovality = factor("ovality", t.ovality, 0.005, "an ovality")?;
+    let youngs_modulus = factor(
+        "youngs_modulus",
+        t.youngs_modulus.or(raw.line.youngs_modulus),
+        207e9,
+        "a Young's modulus in Pa",
+    )?;
+    let start = t.start.unwrap_or(d.envelope_start);
+    if !(start.is_finite() && start >= 0.0 && start < d.duration) {
+        return Err(invalid(
+            file,
+            "design_check.start",
+            "a time in [0, duration) s",
+        ));
+    }
+    Ok(DesignSpec {
+        code,
+        smys: t.smys,
+        smts: t.smts,
+        internal_pressure: t.internal_pressure,
+        corrosion_allowance: t.corrosion_allowance,
+        start,
+        gamma_sc,
+        gamma_m: 1.15,
+        gamma_f: lf.functional,
+        gamma_e: lf.environmental,
+        alpha_u,
+        alpha_fab,
+        ovality,
+        youngs_modulus,
+        poisson: 0.3,
+        design_factor,
     })
 }

@@ -162,6 +162,9 @@ impl RiserScene {
         if let (Some(d), false) = (&mut dynamic, line_types.is_empty()) {
             sections::attach(file, raw, &model, &line_types, d)?;
         }
+        if let Some(d) = &dynamic {
+            check_design_sections(file, d)?;
+        }
         if let Some(m) = dynamic.as_ref().and_then(|d| d.motion.as_ref()) {
             check_motion_reach(file, raw, &ends, m)?;
         }
@@ -259,6 +262,37 @@ fn check_current_profile(file: &str, doc: &toml::Table) -> Result<(), SceneError
     Ok(())
 }
 
+/// A `[design_check]` needs every node's section (a wall and a contents density), and its
+/// corrosion allowance must leave some wall.
+fn check_design_sections(file: &str, d: &DynamicSpec) -> Result<(), SceneError> {
+    let Some(c) = &d.design_check else {
+        return Ok(());
+    };
+    let least_wall = if d.node_sections.is_empty() {
+        d.section.map(|s| s.wall)
+    } else {
+        d.node_sections.iter().map(|s| s.wall).reduce(f64::min)
+    };
+    let Some(wall) = least_wall else {
+        return Err(invalid(
+            file,
+            "line.wall",
+            "the wall thickness in m and the contents density (in [line] or [fatigue], or every line type's wall): the design check needs the section",
+        ));
+    };
+    if c.corrosion_allowance >= wall {
+        return Err(invalid(
+            file,
+            "design_check.corrosion_allowance",
+            format!(
+                "less than the thinnest wall ({wall} m), got {} m",
+                c.corrosion_allowance
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Without `[dynamic]`, no table that only acts in a dynamic run.
 fn check_no_dynamic_tables(file: &str, raw: &RiserFile) -> Result<(), SceneError> {
     for (present, key) in [
@@ -267,6 +301,7 @@ fn check_no_dynamic_tables(file: &str, raw: &RiserFile) -> Result<(), SceneError
         (raw.vessel.is_some(), "vessel"),
         (raw.structural_damping.is_some(), "structural_damping"),
         (raw.fatigue.is_some(), "fatigue"),
+        (raw.design_check.is_some(), "design_check"),
         (!raw.gauge.is_empty(), "gauge"),
     ] {
         if present {

@@ -353,6 +353,46 @@ fn outer() -> Vec<String> {
     vec!["outer".into()]
 }
 
+/// `[design_check]`: the strength check along the line (see `crate::design`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct DesignCheckTable {
+    pub code: String,
+    pub smys: f64,
+    pub smts: f64,
+    #[serde(default)]
+    pub internal_pressure: f64,
+    pub safety_class: Option<String>,
+    #[serde(default)]
+    pub corrosion_allowance: f64,
+    pub start: Option<f64>,
+    pub load_factors: Option<LoadFactorsTable>,
+    pub design_factor: Option<f64>,
+    pub material_strength_factor: Option<f64>,
+    pub fabrication_factor: Option<f64>,
+    pub ovality: Option<f64>,
+    pub youngs_modulus: Option<f64>,
+}
+
+/// `[design_check] load_factors`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct LoadFactorsTable {
+    #[serde(default = "gamma_f")]
+    pub functional: f64,
+    #[serde(default = "gamma_e")]
+    pub environmental: f64,
+}
+
+fn gamma_f() -> f64 {
+    1.1
+}
+fn gamma_e() -> f64 {
+    1.3
+}
+
 /// `[structural_damping]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -425,6 +465,7 @@ pub struct RiserFile {
     pub vessel: Option<VesselTable>,
     pub structural_damping: Option<StructuralDampingTable>,
     pub fatigue: Option<FatigueTable>,
+    pub design_check: Option<DesignCheckTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
     #[serde(default)]
