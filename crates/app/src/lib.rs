@@ -22,6 +22,8 @@ pub mod convergence;
 pub mod design;
 pub mod design_observer;
 pub mod error;
+pub mod extremes;
+pub mod extremes_observer;
 pub mod fatigue;
 pub mod fatigue_observer;
 pub mod observe;
@@ -30,6 +32,7 @@ pub mod run;
 pub mod scene;
 pub mod soil_test;
 pub mod statics;
+pub mod strength;
 pub mod study;
 pub mod sweep;
 

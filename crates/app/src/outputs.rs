@@ -14,6 +14,7 @@ use std::any::Any;
 use catena_fe::dynamics::DynamicModel;
 
 use crate::design_observer::DesignCheck;
+use crate::extremes_observer::ExtremesObserver;
 use crate::fatigue_observer::Fatigue;
 use crate::observe::{Envelopes, Gauges, Observer, TopHistory};
 use crate::scene::riser::DynamicSpec;
@@ -91,6 +92,13 @@ pub const BUILTINS: &[Registration] = &[
             let elements: Vec<(f64, f64)> =
                 line.elements.iter().map(|e| (e.l0, e.section.ei)).collect();
             Some(Box::new(DesignCheck::new(c, &elements, &line.arc)))
+        },
+    },
+    Registration {
+        name: "extremes",
+        build: |s| {
+            let e = s.spec.extremes.clone()?;
+            Some(Box::new(ExtremesObserver::new(e, s.spec.dt)))
         },
     },
 ];

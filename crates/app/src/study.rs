@@ -140,51 +140,16 @@ impl Study {
         if s.record <= 0.0 {
             return Err(invalid(&file, "study.record", "a counted record > 0 s").into());
         }
-        let scene_path = dir.join(&s.scene);
-        let base = crate::statics::read_scene(&scene_path).map_err(|e| match e {
-            AppError::Io { .. } => {
-                invalid(&file, "study.scene", format!("a readable scene file ({e})")).into()
-            }
-            other => other,
-        })?;
-        let dynamic = base.dynamic.as_ref().ok_or_else(|| {
-            AppError::from(invalid(
-                &file,
-                "study.scene",
-                "a scene with a [dynamic] table",
-            ))
-        })?;
-        if dynamic.environment.waves.is_none() || base.doc.get("waves").is_none() {
-            return Err(invalid(
-                &file,
-                "study.scene",
-                "a scene with a [waves] table (jonswap)",
-            )
-            .into());
-        }
-        let storms_path = dir.join(&s.storms);
-        let storms_text = std::fs::read_to_string(&storms_path).map_err(|e| {
-            AppError::from(invalid(
-                &file,
-                "study.storms",
-                format!("a readable storm table ({}: {e})", storms_path.display()),
-            ))
-        })?;
-        let table: StormsFile = parse(&storms_path.display().to_string(), &storms_text)?;
+        let (scene_path, base) = read_base(&file, &dir, &s.scene)?;
+        let (sfile, table): (String, StormsFile) = read_storm_table(&file, &dir, &s.storms)?;
         if table.storm.is_empty() {
             return Err(invalid(&file, "study.storms", "at least one [[storm]]").into());
         }
-        let sfile = storms_path.display().to_string();
         let files = DirResolver::beside(&scene_path);
         let mut storms = Vec::new();
         for (i, st) in table.storm.iter().enumerate() {
             let key = |k: &str| format!("storm[{i}].{k}");
-            if !(st.hs.is_finite() && st.hs > 0.0) {
-                return Err(invalid(&sfile, key("hs"), "a significant wave height > 0 m").into());
-            }
-            if !(st.tp.is_finite() && st.tp > 0.0) {
-                return Err(invalid(&sfile, key("tp"), "a peak period > 0 s").into());
-            }
+            check_sea(&sfile, i, st.hs, st.tp)?;
             if !(st.probability.is_finite() && (0.0..=1.0).contains(&st.probability)) {
                 return Err(invalid(
                     &sfile,
@@ -203,20 +168,18 @@ impl Study {
             if !(record.is_finite() && record > 0.0) {
                 return Err(invalid(&sfile, key("duration"), "a counted record > 0 s").into());
             }
-            let mut edits = vec![
-                Edit::set("waves.kind", "jonswap"),
-                Edit::set("waves.hs", st.hs),
-                Edit::set("waves.tp", st.tp),
-                Edit::set("waves.seed", st.seed.map_or(st.id, |x| x as i64)),
-                Edit::set("dynamic.duration", s.transient + record),
-                Edit::set("dynamic.envelope_start", s.transient),
-                Edit::set("fatigue", toml::Value::Table(raw.fatigue.clone())),
-                Edit::set("fatigue.start", s.transient),
-            ];
-            edits.push(match st.gamma {
-                Some(g) => Edit::set("waves.gamma", g),
-                None => Edit::remove("waves.gamma"),
-            });
+            let sea = Sea {
+                hs: st.hs,
+                tp: st.tp,
+                gamma: st.gamma,
+                seed: st.seed.map_or(st.id, |x| x as i64),
+            };
+            let mut edits = sea.edits(s.transient, record);
+            edits.push(Edit::set(
+                "fatigue",
+                toml::Value::Table(raw.fatigue.clone()),
+            ));
+            edits.push(Edit::set("fatigue.start", s.transient));
             let scene = base.edited(&edits, &files)?;
             storms.push((st.clone(), scene));
         }
@@ -238,6 +201,106 @@ impl Study {
             .map(|f| f.fibres.clone())
             .unwrap_or_default()
     }
+}
+
+/// A storm's sea: what a study sets in its base scene's `[waves]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sea {
+    /// Significant wave height, m.
+    pub hs: f64,
+    /// Peak period, s.
+    pub tp: f64,
+    /// Peak enhancement (the DNV rule when `None`).
+    pub gamma: Option<f64>,
+    /// Seed.
+    pub seed: i64,
+}
+
+impl Sea {
+    /// The edits of a storm's scene: `waves.kind = "jonswap"`, `hs`, `tp`, `seed`, `gamma` (or
+    /// removed), `dynamic.duration = transient + record`, `dynamic.envelope_start = transient`.
+    pub fn edits(&self, transient: f64, record: f64) -> Vec<Edit> {
+        vec![
+            Edit::set("waves.kind", "jonswap"),
+            Edit::set("waves.hs", self.hs),
+            Edit::set("waves.tp", self.tp),
+            Edit::set("waves.seed", self.seed),
+            Edit::set("dynamic.duration", transient + record),
+            Edit::set("dynamic.envelope_start", transient),
+            match self.gamma {
+                Some(g) => Edit::set("waves.gamma", g),
+                None => Edit::remove("waves.gamma"),
+            },
+        ]
+    }
+}
+
+/// A study's base scene (`study.scene`, relative to the study file's directory `dir`): read, and
+/// checked to be a dynamic scene with `[waves]`. Returns its path too.
+pub(crate) fn read_base(
+    file: &str,
+    dir: &Path,
+    scene: &str,
+) -> Result<(PathBuf, RiserScene), AppError> {
+    let scene_path = dir.join(scene);
+    let base = crate::statics::read_scene(&scene_path).map_err(|e| match e {
+        AppError::Io { .. } => {
+            invalid(file, "study.scene", format!("a readable scene file ({e})")).into()
+        }
+        other => other,
+    })?;
+    let dynamic = base.dynamic.as_ref().ok_or_else(|| {
+        AppError::from(invalid(
+            file,
+            "study.scene",
+            "a scene with a [dynamic] table",
+        ))
+    })?;
+    if dynamic.environment.waves.is_none() || base.doc.get("waves").is_none() {
+        return Err(invalid(
+            file,
+            "study.scene",
+            "a scene with a [waves] table (jonswap)",
+        )
+        .into());
+    }
+    Ok((scene_path, base))
+}
+
+/// A study's storm table (`study.storms`, relative to `dir`), parsed; with its path as a name for
+/// errors. At least one storm is checked by the caller.
+pub(crate) fn read_storm_table<T: serde::de::DeserializeOwned>(
+    file: &str,
+    dir: &Path,
+    storms: &str,
+) -> Result<(String, T), AppError> {
+    let storms_path = dir.join(storms);
+    let text = std::fs::read_to_string(&storms_path).map_err(|e| {
+        AppError::from(invalid(
+            file,
+            "study.storms",
+            format!("a readable storm table ({}: {e})", storms_path.display()),
+        ))
+    })?;
+    let sfile = storms_path.display().to_string();
+    let table = parse(&sfile, &text)?;
+    Ok((sfile, table))
+}
+
+/// Storm `i` of the table `sfile`: a wave height and a peak period > 0.
+pub(crate) fn check_sea(sfile: &str, i: usize, hs: f64, tp: f64) -> Result<(), AppError> {
+    if !(hs.is_finite() && hs > 0.0) {
+        return Err(invalid(
+            sfile,
+            format!("storm[{i}].hs"),
+            "a significant wave height > 0 m",
+        )
+        .into());
+    }
+    if !(tp.is_finite() && tp > 0.0) {
+        return Err(invalid(sfile, format!("storm[{i}].tp"), "a peak period > 0 s").into());
+    }
+    Ok(())
 }
 
 /// Runs one storm.

@@ -163,6 +163,25 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     if r.output::<catena::design_observer::DesignCheck>().is_some() {
         plot::design_check(&out.join("design_check.png"), &r)?;
     }
+    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+        write_json(
+            &out.join("extremes.json"),
+            &serde_json::to_value(&x.results).unwrap_or_default(),
+        )?;
+        let items: Vec<_> = x
+            .results
+            .iter()
+            .filter_map(|e| {
+                let k = x.spec.channels.iter().position(|c| c.name == e.channel)?;
+                Some((e, x.records[k].as_slice(), x.dt))
+            })
+            .collect();
+        plot::extremes(
+            &out.join("extremes.png"),
+            &format!("{} — short-term extremes", r.statics.scene.title),
+            &items,
+        )?;
+    }
     if !r.spec.gauges.is_empty() {
         plot::gauges(&out.join("gauges.png"), &r)?;
     }
@@ -323,70 +342,39 @@ pub fn fatigue(
     progress: bool,
 ) -> Result<String, AppError> {
     use catena::study::{run_storm, StormResult, Study};
-    use rayon::prelude::*;
     let t0 = std::time::Instant::now();
     let study = Study::read(study_path)?;
     let touchdown = statics::solve(study.base.clone())?.summary.touchdown_arc;
     let dir = out.join("storms");
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
     let n = study.storms.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let one = |(storm, scene): &(
-        catena::study::Storm,
-        catena::scene::riser::RiserScene,
-    )|
-     -> Result<(StormResult, bool), AppError> {
-        let path = dir.join(format!("{}.json", storm.id));
-        let hash = catena::scene::text_hash(&scene.text);
-        if let Ok(text) = std::fs::read_to_string(&path) {
-            if let Ok(r) = serde_json::from_str::<StormResult>(&text) {
-                if r.scene_hash == hash && r.error.is_none() && r.storm == *storm {
-                    done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                    return Ok((r, true));
-                }
+    let (rs, reused) = resumable(
+        &study.file,
+        &study.storms,
+        jobs,
+        |(storm, _)| dir.join(format!("{}.json", storm.id)),
+        |(storm, scene), r: &StormResult| {
+            r.scene_hash == catena::scene::text_hash(&scene.text)
+                && r.error.is_none()
+                && r.storm == *storm
+        },
+        |(storm, scene)| run_storm(storm, scene),
+        |(storm, _), r, k| {
+            if progress {
+                eprintln!(
+                    "  storm {} (Hs {} m, Tp {} s): {:.1} s{}; {k}/{n} done, {:.0} s elapsed",
+                    storm.id,
+                    storm.hs,
+                    storm.tp,
+                    r.wall_seconds,
+                    r.error
+                        .as_ref()
+                        .map_or(String::new(), |e| format!(", STOPPED EARLY: {e}")),
+                    t0.elapsed().as_secs_f64()
+                );
             }
-        }
-        let r = run_storm(storm, scene)?;
-        let tmp = path.with_extension("json.tmp");
-        let text = serde_json::to_string(&r).map_err(|e| AppError::Output {
-            path: path.clone(),
-            message: e.to_string(),
-        })?;
-        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| AppError::io(&path, e))?;
-        let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-        if progress {
-            let el = t0.elapsed().as_secs_f64();
-            eprintln!(
-                "  storm {} (Hs {} m, Tp {} s): {:.1} s{}; {k}/{n} done, {:.0} s elapsed",
-                storm.id,
-                storm.hs,
-                storm.tp,
-                r.wall_seconds,
-                r.error
-                    .as_ref()
-                    .map_or(String::new(), |e| format!(", STOPPED EARLY: {e}")),
-                el
-            );
-        }
-        Ok((r, false))
-    };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.max(1))
-        .build()
-        .map_err(|e| AppError::Run {
-            file: study.file.clone(),
-            message: format!("--jobs: cannot start {jobs} threads: {e}"),
-        })?;
-    let results: Vec<Result<(StormResult, bool), AppError>> =
-        pool.install(|| study.storms.par_iter().map(one).collect());
-    let mut rs = Vec::with_capacity(n);
-    let mut reused = 0;
-    for r in results {
-        let (r, old) = r?;
-        reused += usize::from(old);
-        rs.push(r);
-    }
+        },
+    )?;
     let l = catena_io::fatigue::lives(&study, &rs);
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
     catena_io::fatigue::write_h5(&out.join("fatigue.h5"), &rs, &l)?;
@@ -764,6 +752,12 @@ fn describe_scene(
             if d.fatigue.is_some() {
                 effects.push("fatigue (stress, rainflow, S-N damage)".into());
             }
+            if let Some(c) = &d.design_check {
+                effects.push(format!("strength check ({})", c.code.name()));
+            }
+            if let Some(x) = &d.extremes {
+                effects.push(format!("extremes of {} channels", x.channels.len()));
+            }
             if !d.gauges.is_empty() {
                 effects.push(format!("{} gauges", d.gauges.len()));
             }
@@ -832,6 +826,28 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             per_run * runs.len() as f64 / 3600.0,
             per_run
         );
+    } else if doc.contains_key("study") && !doc.contains_key("fatigue") {
+        let study = catena::strength::StrengthStudy::read(case)?;
+        let _ = writeln!(
+            t,
+            "{file}: a strength study of {} runs (storms × seeds)",
+            study.runs.len()
+        );
+        let mut sum = 0.0;
+        for (i, run) in study.runs.iter().enumerate() {
+            if i == 0 {
+                let _ = writeln!(t, "  each run's scene (the first shown):");
+                sum += describe_scene(&run.scene, &mut t, &mut warnings);
+            } else {
+                let mut scratch = String::new();
+                sum += describe_scene(&run.scene, &mut scratch, &mut warnings);
+            }
+        }
+        let _ = writeln!(
+            t,
+            "  estimated: {:.0} s on one core for the whole study",
+            sum
+        );
     } else if doc.contains_key("study") {
         let study = catena::study::Study::read(case)?;
         let _ = writeln!(
@@ -873,4 +889,380 @@ pub fn check(case: &Path) -> Result<String, AppError> {
         let _ = writeln!(t, "  warning: {w}");
     }
     Ok(t)
+}
+
+/// What `catena extremes` is asked for.
+#[derive(Debug, Clone, Default)]
+pub struct ExtremesOptions {
+    /// The channels (empty: the defaults of the input).
+    pub channels: Vec<String>,
+    /// The record starts here, s (default: the file's first time).
+    pub start: Option<f64>,
+    /// The analysis' target duration, quantile and block (defaults: 3 h, 0.9, 600 s).
+    pub settings: catena::extremes::Settings,
+}
+
+/// `catena extremes RESULTS.h5|SERIES.csv --out DIR`: the short-term extremes of recorded channels
+/// (`catena::extremes`): from a results file, `top_tension`, `least_tension`, `sag_moment`,
+/// `utilisation` (with a design check) and `gauge:NAME[:max]`; from a CSV file (a header with
+/// `time` first, then one column per channel; a `:min` suffix on a column's name analyses its
+/// least), every column or the chosen ones. Writes DIR/extremes.json and DIR/extremes.png.
+pub fn extremes(input: &Path, out: &Path, opts: &ExtremesOptions) -> Result<String, AppError> {
+    use catena::extremes::{analyse, Tail};
+    let bad = |message: String| AppError::Run {
+        file: input.display().to_string(),
+        message,
+    };
+    let s = &opts.settings;
+    if !(s.target > 0.0 && s.block > 0.0 && s.quantile > 0.0 && s.quantile < 1.0) {
+        return Err(bad(
+            "--target and --block must be > 0 s and --quantile in (0, 1)".into(),
+        ));
+    }
+    let is_h5 = input.extension().is_some_and(|e| e == "h5" || e == "hdf5");
+    let (time, channels) = if is_h5 {
+        catena_io::h5::read_extreme_channels(input, &opts.channels)?
+    } else {
+        let names = catena_io::series::column_names(input)?;
+        if names.first().map(String::as_str) != Some("time") {
+            return Err(bad(format!(
+                "expected `time` (s) as the first column, then one column per channel; the header has {}",
+                names.join(", ")
+            )));
+        }
+        let time = catena_io::series::read_series(input, Some("time"))?;
+        let wanted: Vec<String> = if opts.channels.is_empty() {
+            names[1..].to_vec()
+        } else {
+            opts.channels.clone()
+        };
+        let mut v = Vec::new();
+        for w in wanted {
+            if !names.contains(&w) {
+                return Err(bad(format!(
+                    "--channel {w}: no such column (the header has {})",
+                    names.join(", ")
+                )));
+            }
+            let tail = if w.ends_with(":min") {
+                Tail::Min
+            } else {
+                Tail::Max
+            };
+            v.push((
+                w.clone(),
+                tail,
+                catena_io::series::read_series(input, Some(&w))?,
+            ));
+        }
+        (time, v)
+    };
+    if time.len() < 3 {
+        return Err(bad("fewer than three samples".into()));
+    }
+    let dt = time[1] - time[0];
+    if time
+        .windows(2)
+        .any(|w| ((w[1] - w[0]) - dt).abs() > 1e-6 * dt.abs().max(1e-12))
+        || dt <= 0.0
+    {
+        return Err(bad(
+            "the times are not equally spaced and increasing (the statistics need a uniform record)".into(),
+        ));
+    }
+    let from = opts.start.unwrap_or(time[0]);
+    let first = time.partition_point(|t| *t < from - 1e-9);
+    let mut results = Vec::new();
+    let mut records = Vec::new();
+    for (name, tail, v) in &channels {
+        let x = &v[first..];
+        match analyse(name, *tail, x, dt, s) {
+            Some(e) => {
+                results.push(e);
+                records.push(x);
+            }
+            None => {
+                return Err(bad(format!(
+                    "--channel {name}: too short or constant from t = {from} s to analyse"
+                )))
+            }
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    let js = out.join("extremes.json");
+    write_json(&js, &serde_json::to_value(&results).unwrap_or_default())?;
+    let items: Vec<_> = results
+        .iter()
+        .zip(&records)
+        .map(|(e, x)| (e, *x, dt))
+        .collect();
+    catena_io::plot::extremes(
+        &out.join("extremes.png"),
+        &format!("{} — short-term extremes", input.display()),
+        &items,
+    )?;
+    let mut t = format!(
+        "extremes of {}: {} channels, records from t = {from} s every {dt} s\n",
+        input.display(),
+        results.len()
+    );
+    for e in &results {
+        t.push_str(&catena_io::report::extremes_line(e));
+    }
+    let _ = writeln!(
+        t,
+        "  wrote {} and {}",
+        js.display(),
+        out.join("extremes.png").display()
+    );
+    Ok(t)
+}
+
+/// `catena strength STUDY.toml --out DIR [--jobs N]`: the strength study
+/// ([`catena::strength`]): every storm and seed run (in parallel with `--jobs`), each written to
+/// DIR/runs/<storm>-<seed>.json as it finishes (a rerun skips the runs whose scene is unchanged),
+/// then per storm the utilisation along the line over its seeds and the extremes across them:
+/// DIR/summary.json, DIR/utilisation.csv, DIR/strength.png.
+pub fn strength(
+    study_path: &Path,
+    out: &Path,
+    jobs: usize,
+    progress: bool,
+) -> Result<String, AppError> {
+    use catena::strength::{run_one, RunResult, StrengthStudy};
+    let t0 = std::time::Instant::now();
+    let study = StrengthStudy::read(study_path)?;
+    let st = statics::solve(study.base.clone())?;
+    let dir = out.join("runs");
+    std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
+    let n = study.runs.len();
+    let (rs, reused) = resumable(
+        &study.file,
+        &study.runs,
+        jobs,
+        |run| dir.join(format!("{}-{}.json", run.storm.id, run.seed)),
+        |run, r: &RunResult| {
+            r.scene_hash == catena::scene::text_hash(&run.scene.text)
+                && r.error.is_none()
+                && r.storm == run.storm
+        },
+        run_one,
+        |run, r, k| {
+            if progress {
+                eprintln!(
+                    "  storm {} seed {} (Hs {} m, Tp {} s): largest utilisation {}; {:.1} s{}; {k}/{n} done, {:.0} s elapsed",
+                    run.storm.id,
+                    run.seed,
+                    run.storm.hs,
+                    run.storm.tp,
+                    r.worst.as_ref().map_or("—".into(), |w| format!("{:.4}", w.1)),
+                    r.wall_seconds,
+                    r.error
+                        .as_ref()
+                        .map_or(String::new(), |e| format!(", STOPPED EARLY: {e}")),
+                    t0.elapsed().as_secs_f64()
+                );
+            }
+        },
+    )?;
+    let quantile = study
+        .runs
+        .first()
+        .and_then(|r| r.scene.dynamic.as_ref())
+        .and_then(|d| d.extremes.as_ref())
+        .map_or(0.9, |e| e.settings.quantile);
+    let summary = catena::strength::summarise(&rs, quantile);
+    let arc = &st.model.arc;
+    let static_u: Vec<f64> = study
+        .runs
+        .first()
+        .and_then(|r| r.scene.dynamic.as_ref())
+        .and_then(|d| {
+            let spec = d.design_check?;
+            let sections: Vec<_> = if d.node_sections.is_empty() {
+                vec![d.section?; arc.len()]
+            } else {
+                d.node_sections.clone()
+            };
+            let ev = catena::design::Evaluator::new(
+                spec,
+                sections.into_iter(),
+                &st.results.moment,
+                &st.results.tension,
+            );
+            let mut u = vec![0.0; arc.len()];
+            ev.along(&st.results, &mut u);
+            Some(u)
+        })
+        .unwrap_or_default();
+    std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    let wall = t0.elapsed().as_secs_f64();
+    let failed: Vec<_> = rs
+        .iter()
+        .filter_map(|r| {
+            r.error
+                .as_ref()
+                .map(|e| serde_json::json!({"storm": r.storm.id, "seed": r.seed, "error": e}))
+        })
+        .collect();
+    let js = serde_json::json!({
+        "study": study.file,
+        "runs": n,
+        "reused": reused,
+        "wall_seconds": wall,
+        "failed": failed,
+        "arc": arc,
+        "static_utilisation": static_u,
+        "storms": summary,
+        "per_run": rs.iter().map(|r| serde_json::json!({
+            "storm": r.storm.id, "seed": r.seed, "worst": r.worst,
+            "compression": r.compression, "wall_seconds": r.wall_seconds,
+        })).collect::<Vec<_>>(),
+    });
+    write_json(&out.join("summary.json"), &js)?;
+    let mut csv = String::from("arc_m,static_utilisation");
+    for s in &summary {
+        let _ = write!(
+            csv,
+            ",storm{}_envelope,storm{}_mean_over_seeds",
+            s.storm.id, s.storm.id
+        );
+    }
+    csv.push('\n');
+    for (i, a) in arc.iter().enumerate() {
+        let _ = write!(csv, "{a},{}", static_u.get(i).copied().unwrap_or(f64::NAN));
+        for s in &summary {
+            let _ = write!(
+                csv,
+                ",{},{}",
+                s.utilisation_envelope[i], s.utilisation_mean[i]
+            );
+        }
+        csv.push('\n');
+    }
+    let cp = out.join("utilisation.csv");
+    std::fs::write(&cp, csv).map_err(|e| AppError::io(&cp, e))?;
+    catena_io::plot::strength(
+        &out.join("strength.png"),
+        &format!("{} — strength study", study.base.title),
+        arc,
+        &static_u,
+        &rs,
+        &summary,
+    )?;
+    let mut t = format!(
+        "strength study {}: {n} runs ({reused} from an earlier run), {wall:.1} s wall\n",
+        study.file
+    );
+    for s in &summary {
+        let u = &s.across_seeds[0];
+        let (i, umax) = s
+            .utilisation_envelope
+            .iter()
+            .copied()
+            .enumerate()
+            .fold((0, 0.0), |b, (i, v)| if v > b.1 { (i, v) } else { b });
+        let _ = writeln!(
+            t,
+            "  storm {} (Hs {} m, Tp {} s), {} seeds of {:.0} s: largest utilisation {umax:.4} at arc length {:.2} m; over the seeds mean {:.4}, standard deviation {:.4}{}",
+            s.storm.id,
+            s.storm.hs,
+            s.storm.tp,
+            s.seeds.len(),
+            s.record,
+            arc[i],
+            u.mean,
+            u.std_dev,
+            u.gumbel.map_or(String::new(), |(_, v)| format!(
+                "; Gumbel across seeds: most probable {:.4}, {:.0} % quantile {:.4}",
+                v[0],
+                100.0 * quantile,
+                v[1]
+            ))
+        );
+        for c in &s.across_seeds[1..] {
+            let _ = writeln!(
+                t,
+                "    {}: per seed mean {:.6e} (sd {:.3e}){}",
+                c.channel,
+                c.mean,
+                c.std_dev,
+                c.gumbel.map_or(String::new(), |(_, v)| format!(
+                    "; Gumbel across seeds: most probable {:.6e}, quantile {:.6e}",
+                    v[0], v[1]
+                ))
+            );
+        }
+    }
+    if !failed.is_empty() {
+        let _ = writeln!(
+            t,
+            "  {} runs STOPPED EARLY (see summary.json `failed`)",
+            failed.len()
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  wrote {}, {}, {}",
+        out.join("summary.json").display(),
+        cp.display(),
+        out.join("strength.png").display()
+    );
+    Ok(t)
+}
+
+/// Runs `items` on `jobs` threads, each result written atomically to its JSON file (`path_of`) as
+/// it finishes and `done` told (with how many are done); an item whose file holds a result that
+/// `reuse` accepts is taken from there and not run. Returns the results in the items' order and
+/// how many were reused. (The fatigue and the strength studies: a rerun resumes.)
+fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwned + Send>(
+    file: &str,
+    items: &[I],
+    jobs: usize,
+    path_of: impl Fn(&I) -> PathBuf + Sync,
+    reuse: impl Fn(&I, &R) -> bool + Sync,
+    run: impl Fn(&I) -> Result<R, AppError> + Sync,
+    done: impl Fn(&I, &R, usize) + Sync,
+) -> Result<(Vec<R>, usize), AppError> {
+    use rayon::prelude::*;
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let one = |item: &I| -> Result<(R, bool), AppError> {
+        let path = path_of(item);
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Ok(r) = serde_json::from_str::<R>(&text) {
+                if reuse(item, &r) {
+                    count.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                    return Ok((r, true));
+                }
+            }
+        }
+        let r = run(item)?;
+        let tmp = path.with_extension("json.tmp");
+        let text = serde_json::to_string(&r).map_err(|e| AppError::Output {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
+        std::fs::rename(&tmp, &path).map_err(|e| AppError::io(&path, e))?;
+        let k = count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+        done(item, &r, k);
+        Ok((r, false))
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .build()
+        .map_err(|e| AppError::Run {
+            file: file.to_string(),
+            message: format!("--jobs: cannot start {jobs} threads: {e}"),
+        })?;
+    let results: Vec<Result<(R, bool), AppError>> =
+        pool.install(|| items.par_iter().map(one).collect());
+    let mut out = Vec::with_capacity(items.len());
+    let mut reused = 0;
+    for r in results {
+        let (r, old) = r?;
+        reused += usize::from(old);
+        out.push(r);
+    }
+    Ok((out, reused))
 }

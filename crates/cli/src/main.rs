@@ -95,6 +95,23 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Strength study: a base scene with a [design_check] run for each design storm of a storm table
+    /// and each of its seeds; per storm, the largest utilisation along the line over the seeds and
+    /// the extremes across the seeds (Gumbel). Writes DIR/runs/<storm>-<seed>.json (a rerun skips
+    /// the runs done), DIR/summary.json, utilisation.csv and strength.png.
+    Strength {
+        /// The study file (TOML with [study]; optional [design_check] and [extremes]).
+        study: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Runs at once.
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
+        /// Do not print a line per run.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Parameter sweep: a plan's key paths varied over a base scene or fatigue study, expanded into
     /// a sorted list of runs (point × storm); each run writes DIR/runs/<id>.json (a rerun skips the
     /// runs done), then DIR/sweep.csv and sweep.json merge them. On a cluster, --shard i --shards
@@ -141,6 +158,33 @@ enum Command {
         /// Stress concentration factor applied to every range.
         #[arg(long, default_value_t = 1.0)]
         scf: f64,
+    },
+    /// Short-term extremes of recorded channels: the sample extreme, the Rayleigh, Weibull (of the
+    /// up-crossing peaks) and Gumbel (of block maxima) most probable extremes and a quantile for a
+    /// target duration. Writes DIR/extremes.json and DIR/extremes.png.
+    Extremes {
+        /// A results file (results.h5 of `catena run`) or a CSV file (`time` first, then channels).
+        input: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// A channel (repeatable): top_tension, least_tension, sag_moment, utilisation,
+        /// utilisation_at_critical, moment_at_critical, gauge:NAME[:max] from a results file; a
+        /// column's name from a CSV file.
+        #[arg(long = "channel")]
+        channels: Vec<String>,
+        /// Analyse from this time, s (default: the first record).
+        #[arg(long)]
+        start: Option<f64>,
+        /// Target duration, s.
+        #[arg(long, default_value_t = 10800.0)]
+        target: f64,
+        /// Non-exceedance probability of the reported quantile.
+        #[arg(long, default_value_t = 0.9)]
+        quantile: f64,
+        /// Block length for the Gumbel fit of block maxima, s.
+        #[arg(long, default_value_t = 600.0)]
+        block: f64,
     },
     /// Reads and checks a scene, a fatigue study, a sweep plan or a soil test without running it:
     /// prints what would run (the effects built, elements, steps, estimated time, memory and disk)
@@ -233,6 +277,12 @@ fn main() -> ExitCode {
             jobs,
             quiet,
         } => commands::fatigue(&study, &out, jobs, !quiet).map(|t| print!("{t}")),
+        Command::Strength {
+            study,
+            out,
+            jobs,
+            quiet,
+        } => commands::strength(&study, &out, jobs, !quiet).map(|t| print!("{t}")),
         Command::Sweep {
             plan,
             out,
@@ -263,6 +313,28 @@ fn main() -> ExitCode {
             scf,
         } => commands::rainflow(&series, &out, column.as_deref(), sn.as_deref(), scf)
             .map(|t| print!("{t}")),
+        Command::Extremes {
+            input,
+            out,
+            channels,
+            start,
+            target,
+            quantile,
+            block,
+        } => commands::extremes(
+            &input,
+            &out,
+            &commands::ExtremesOptions {
+                channels,
+                start,
+                settings: catena::extremes::Settings {
+                    target,
+                    quantile,
+                    block,
+                },
+            },
+        )
+        .map(|t| print!("{t}")),
         Command::Check { case } => commands::check(&case).map(|t| print!("{t}")),
         Command::Static { case, out } => commands::static_(&case, &out).map(|t| print!("{t}")),
     };

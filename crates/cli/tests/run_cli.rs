@@ -574,7 +574,8 @@ fn fatigue_observer_equals_counting_the_records() {
 /// here) and one column per node, and each node's `utilisation_max` is its column's largest (the
 /// check starts at 0); `summary.json` has the largest, where and when, and pass; `design_check.png`
 /// is drawn. A run stopped at step 120 and restarted from its step-111 checkpoint into the same
-/// directory ends with the same utilisation records and per-node results to the bit.
+/// directory ends with the same utilisation records and per-node results to the bit. With
+/// `[extremes]`: the same after the restart, and `catena extremes results.h5` gives the run's own.
 #[test]
 fn design_check_is_recorded_and_restarts_bit_for_bit() {
     let dir = tmp("design");
@@ -588,7 +589,7 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
             )
             .edit("duration = 100.0", "duration = 10.0")
             .edit("envelope_start = 50.0", "envelope_start = 2.0")
-            + "\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n",
+            + "\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n\n[extremes]\nstart = 2.0\nblock = 1.0\ntarget_duration = 600.0\n",
     )
     .expect("case");
     let (full, cut) = (dir.join("full"), dir.join("cut"));
@@ -649,4 +650,85 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
     assert_eq!(largest, umax.iter().copied().fold(0.0, f64::max));
     assert_eq!(summary(&cut)["design_check"], c.clone());
     assert!(full.join("design_check.png").exists());
+    // The extremes: the same after the restart (their records travel with the checkpoint), and
+    // `catena extremes` of the results file (recorded every step) gives the run's own, to the bit.
+    let ext = |dir: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join("extremes.json")).expect("json"))
+            .expect("json")
+    };
+    let in_run = ext(&full);
+    assert_eq!(in_run.as_array().map(Vec::len), Some(4));
+    assert_eq!(ext(&cut), in_run);
+    assert_eq!(s["extremes"], in_run);
+    let post = dir.join("post");
+    let text = commands::extremes(
+        &full.join("results.h5"),
+        &post,
+        &commands::ExtremesOptions {
+            channels: Vec::new(),
+            start: Some(2.0),
+            settings: catena::extremes::Settings {
+                target: 600.0,
+                quantile: 0.9,
+                block: 1.0,
+            },
+        },
+    )
+    .expect("extremes of the file");
+    assert!(text.contains("utilisation"), "{text}");
+    assert_eq!(ext(&post), in_run);
+    assert!(post.join("extremes.png").exists() && full.join("extremes.png").exists());
+    // At the critical node (the largest utilisation over the run): its utilisation and moment
+    // columns of the records, from t = 2 s.
+    let crit = dir.join("crit");
+    commands::extremes(
+        &full.join("results.h5"),
+        &crit,
+        &commands::ExtremesOptions {
+            channels: vec![
+                "utilisation_at_critical".into(),
+                "moment_at_critical".into(),
+            ],
+            start: Some(2.0),
+            settings: catena::extremes::Settings {
+                target: 600.0,
+                quantile: 0.9,
+                block: 1.0,
+            },
+        },
+    )
+    .expect("critical node");
+    let c = ext(&crit);
+    let i = umax
+        .iter()
+        .enumerate()
+        .fold(0, |b, (i, v)| if *v > umax[b] { i } else { b });
+    let moments = hdf5::File::open(full.join("results.h5"))
+        .expect("h5")
+        .dataset("dynamic/bending_moment")
+        .expect("moment")
+        .read_raw::<f64>()
+        .expect("moment");
+    let col = |v: &[f64]| -> Vec<f64> { (40..201).map(|k| v[k * n + i]).collect() };
+    let u_crit = col(&u).into_iter().fold(0.0, f64::max);
+    let m_col = col(&moments);
+    let m_least = m_col.iter().copied().fold(f64::INFINITY, f64::min);
+    assert_eq!(c[0]["sample_extreme"].as_f64(), Some(u_crit));
+    assert_eq!(c[1]["tail"], "min", "the critical node is in the sag bend");
+    assert_eq!(c[1]["sample_extreme"].as_f64(), Some(m_least));
+    // A channel the file cannot give: an error naming the file and the channel.
+    let e = commands::extremes(
+        &full.join("results.h5"),
+        &post,
+        &commands::ExtremesOptions {
+            channels: vec!["gauge:nowhere".into()],
+            ..commands::ExtremesOptions::default()
+        },
+    )
+    .expect_err("no such gauge")
+    .to_string();
+    assert!(
+        e.contains("results.h5") && e.contains("gauge:nowhere"),
+        "{e}"
+    );
 }

@@ -329,9 +329,28 @@ fn data_box(
 fn framed_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
+    axes: (&str, &str),
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    framed_chart_sized(area, caption, axes, x, y, 18)
+}
+
+/// [`framed_chart`] with the caption's font size.
+fn framed_chart_sized<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
     (xlabel, ylabel): (&str, &str),
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
+    caption_size: u32,
 ) -> Result<
     ChartContext<
         'a,
@@ -341,7 +360,7 @@ fn framed_chart<'a, DB: DrawingBackend>(
     String,
 > {
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 18))
+        .caption(caption, ("sans-serif", caption_size))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75)
@@ -394,7 +413,7 @@ fn lines_panel<DB: DrawingBackend>(
     let mut chart = framed_chart(area, caption, (xlabel, ylabel), (x0, x1), (y0, y1))?;
     for s in series {
         let c = s.colour;
-        chart
+        let drawn = chart
             .draw_series(LineSeries::new(
                 s.points
                     .iter()
@@ -402,9 +421,13 @@ fn lines_panel<DB: DrawingBackend>(
                     .filter(|(x, _)| x_range.is_none_or(|(a, b)| *x >= a && *x <= b)),
                 c.stroke_width(2),
             ))
-            .map_err(|e| e.to_string())?
-            .label(s.label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+            .map_err(|e| e.to_string())?;
+        // An unlabelled line (a repeat of one listed) is drawn, not listed.
+        if !s.label.is_empty() {
+            drawn.label(s.label).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3))
+            });
+        }
     }
     for &(x, label, c) in markers {
         if !(x.is_finite() && x >= x0 && x <= x1) {
@@ -982,6 +1005,240 @@ pub fn design_check(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
         zoom,
     )
     .map_err(&perr)?;
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
+/// The extremes on probability paper (`extremes.png`): a row per channel, its up-crossing peaks'
+/// excesses on Weibull paper and its block maxima on Gumbel paper, each with its fitted line (a
+/// fit that suits the data is a straight line through the points), and the estimates of the target
+/// duration's extreme in the caption. `items`: each channel's analysis, record and time step.
+pub fn extremes(
+    path: &Path,
+    title: &str,
+    items: &[(&catena::extremes::Extremes, &[f64], f64)],
+) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let rows = items.len().max(1);
+    let root = BitMapBackend::new(path, (1800, 60 + 420 * rows as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(&err)?;
+    let areas = root.split_evenly((rows, 2));
+    let (blue, red) = (RGBColor(20, 90, 200), RGBColor(180, 30, 30));
+    for (k, (e, x, dt)) in items.iter().enumerate() {
+        let p = catena::extremes::paper(e, x, *dt);
+        let side = match e.tail {
+            catena::extremes::Tail::Max => "",
+            catena::extremes::Tail::Min => " (least, negated)",
+        };
+        let mpm = |v: Option<f64>| {
+            v.map_or("—".to_string(), |v| {
+                if v.abs() >= 1e3 {
+                    format!("{v:.4e}")
+                } else {
+                    format!("{v:.4}")
+                }
+            })
+        };
+        let w_caption = format!(
+            "{}{side}: peaks, Weibull paper; MPM {} h: Rayleigh {}, Weibull {}",
+            e.channel,
+            e.target / 3600.0,
+            mpm(Some(e.rayleigh[0])),
+            mpm(e.weibull.map(|w| w.1[0]))
+        );
+        let g_caption = format!(
+            "{}{side}: {} s block maxima, Gumbel paper; MPM {}; sample {}",
+            e.channel,
+            e.gumbel.map_or(0.0, |g| g.0),
+            mpm(e.gumbel.map(|g| g.2[0])),
+            mpm(Some(e.sample_extreme))
+        );
+        for (area, (points, line), caption, axes) in [
+            (
+                &areas[2 * k],
+                &p.weibull,
+                w_caption,
+                ("ln(peak − mean)", "ln(−ln(1 − F))"),
+            ),
+            (
+                &areas[2 * k + 1],
+                &p.gumbel,
+                g_caption,
+                ("block maximum (negated for a least)", "−ln(−ln F)"),
+            ),
+        ] {
+            let ((x0, x1), (y0, y1)) = data_box(points.iter().chain(line).copied(), None);
+            let mut chart =
+                framed_chart_sized(area, &caption, axes, (x0, x1), (y0, y1), 15).map_err(&perr)?;
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&(a, b)| Circle::new((a, b), 3, blue.filled())),
+                )
+                .map_err(|e| perr(e.to_string()))?;
+            chart
+                .draw_series(LineSeries::new(line.iter().copied(), red.stroke_width(2)))
+                .map_err(|e| perr(e.to_string()))?;
+        }
+    }
+    root.present().map_err(&err)?;
+    Ok(())
+}
+
+/// The strength study (`strength.png`): per storm (a row), the largest utilisation along the line
+/// of each seed (thin), their envelope and the static state's with the limit 1.0; beside it, each
+/// seed's largest utilisation on Gumbel paper with the fit across the seeds (three or more).
+pub fn strength(
+    path: &Path,
+    title: &str,
+    arc: &[f64],
+    static_u: &[f64],
+    runs: &[catena::strength::RunResult],
+    storms: &[catena::strength::StormSummary],
+) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let rows = storms.len().max(1);
+    let root = BitMapBackend::new(path, (1800, 60 + 460 * rows as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(&err)?;
+    let areas = root.split_evenly((rows, 3));
+    let (blue, red, grey, light) = (
+        RGBColor(20, 90, 200),
+        RGBColor(180, 30, 30),
+        RGBColor(90, 90, 90),
+        RGBColor(150, 170, 210),
+    );
+    for (k, s) in storms.iter().enumerate() {
+        let mut series = vec![
+            Labelled {
+                points: arc
+                    .iter()
+                    .copied()
+                    .zip(s.utilisation_envelope.iter().copied())
+                    .collect(),
+                colour: blue,
+                label: "largest over the seeds",
+            },
+            Labelled {
+                points: arc.iter().copied().zip(static_u.iter().copied()).collect(),
+                colour: grey,
+                label: "static (functional only)",
+            },
+            Labelled {
+                points: vec![(arc[0], 1.0), (arc[arc.len() - 1], 1.0)],
+                colour: red,
+                label: "limit 1.0",
+            },
+        ];
+        for (j, r) in runs
+            .iter()
+            .filter(|r| r.error.is_none() && r.storm.id == s.storm.id)
+            .enumerate()
+        {
+            series.push(Labelled {
+                points: arc
+                    .iter()
+                    .copied()
+                    .zip(r.utilisation_max.iter().copied())
+                    .collect(),
+                colour: light,
+                label: if j == 0 { "each seed" } else { "" },
+            });
+        }
+        // Each seed's line beneath the envelope.
+        series.rotate_left(3);
+        let caption = format!(
+            "storm {} (Hs {} m, Tp {} s), {} seeds: largest utilisation along the line",
+            s.storm.id,
+            s.storm.hs,
+            s.storm.tp,
+            s.seeds.len()
+        );
+        legend_panel(
+            &areas[3 * k],
+            &caption,
+            ("arc length from the top (m)", "utilisation (1)"),
+            &series,
+            &[],
+            None,
+        )
+        .map_err(&perr)?;
+        // Around the largest (±100 m), without the limit: the spread over the seeds.
+        let (i, _) = s
+            .utilisation_envelope
+            .iter()
+            .copied()
+            .enumerate()
+            .fold((0, 0.0), |b, (i, v)| if v > b.1 { (i, v) } else { b });
+        let near = (arc[i] - 100.0, arc[i] + 100.0);
+        let close: Vec<Labelled<'_>> = series
+            .iter()
+            .filter(|l| l.label != "limit 1.0")
+            .map(|l| Labelled {
+                points: l.points.clone(),
+                colour: l.colour,
+                label: l.label,
+            })
+            .collect();
+        legend_panel(
+            &areas[3 * k + 1],
+            &format!("within 100 m of the largest, at {:.1} m", arc[i]),
+            ("arc length from the top (m)", "utilisation (1)"),
+            &close,
+            &[],
+            Some(near),
+        )
+        .map_err(&perr)?;
+        let u = &s.across_seeds[0];
+        let mut m = u.per_seed.clone();
+        m.sort_by(f64::total_cmp);
+        let n = m.len() as f64;
+        let points: Vec<(f64, f64)> = m
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (*v, -(-((i as f64 + 1.0) / (n + 1.0)).ln()).ln()))
+            .collect();
+        let line: Vec<(f64, f64)> = match (u.gumbel, m.first(), m.last()) {
+            (Some((g, _)), Some(a), Some(b)) => [*a, *b]
+                .iter()
+                .map(|v| (*v, (v - g.location) / g.scale))
+                .collect(),
+            _ => Vec::new(),
+        };
+        let caption = format!(
+            "each seed's largest, Gumbel paper: {}",
+            u.gumbel
+                .map_or("fewer than 3 seeds: no fit".to_string(), |(_, v)| format!(
+                    "MPM {:.4}, quantile {:.4}",
+                    v[0], v[1]
+                ))
+        );
+        let ((x0, x1), (y0, y1)) = data_box(points.iter().chain(&line).copied(), None);
+        let mut chart = framed_chart(
+            &areas[3 * k + 2],
+            &caption,
+            ("largest utilisation of a seed", "−ln(−ln F)"),
+            (x0, x1),
+            (y0, y1),
+        )
+        .map_err(&perr)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(a, b)| Circle::new((a, b), 5, blue.filled())),
+            )
+            .map_err(|e| perr(e.to_string()))?;
+        chart
+            .draw_series(LineSeries::new(line.iter().copied(), red.stroke_width(2)))
+            .map_err(|e| perr(e.to_string()))?;
+    }
     root.present().map_err(&err)?;
     Ok(())
 }

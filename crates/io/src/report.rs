@@ -173,6 +173,9 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
     if let Some(d) = r.output::<catena::design_observer::DesignCheck>() {
         js["design_check"] = design_check_json(d);
     }
+    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+        js["extremes"] = serde_json::to_value(&x.results).unwrap_or(Value::Null);
+    }
     let e = &r.envelopes;
     js["dynamic"] = json!({
         "completed": r.completed(),
@@ -362,10 +365,39 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             );
         }
     }
+    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+        for e in &x.results {
+            t.push_str(&extremes_line(e));
+        }
+    }
     if let Some(s) = &r.stop {
         let _ = writeln!(t, "  STOPPED EARLY at t = {:.6} s: {s}", r.t_reached);
     }
     t
+}
+
+/// One line of the text summary for a channel's extremes.
+pub fn extremes_line(e: &catena::extremes::Extremes) -> String {
+    let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.6e}"));
+    let side = match e.tail {
+        catena::extremes::Tail::Max => "largest",
+        catena::extremes::Tail::Min => "least",
+    };
+    format!(
+        "  extremes of {} ({side}; {:.0} s of record, {} samples): sample {}; most probable in {:.0} s: Rayleigh {}, Weibull {}, Gumbel {}; {:.0} % quantile: Rayleigh {}, Weibull {}, Gumbel {}\n",
+        e.channel,
+        e.duration,
+        e.samples,
+        f(Some(e.sample_extreme)),
+        e.target,
+        f(Some(e.rayleigh[0])),
+        f(e.weibull.map(|w| w.1[0])),
+        f(e.gumbel.map(|g| g.2[0])),
+        100.0 * e.quantile_probability,
+        f(Some(e.rayleigh[1])),
+        f(e.weibull.map(|w| w.1[1])),
+        f(e.gumbel.map(|g| g.2[1])),
+    )
 }
 
 /// The design check section of `summary.json`: the code, the largest utilisation, where, when and

@@ -1,5 +1,6 @@
-//! Time series in CSV (for `catena rainflow`): one numeric column, or a column chosen by its header
-//! name; and the cycles table it writes (`range,mean,count`, in the order found).
+//! Time series in CSV (for `catena rainflow` and `catena extremes`): one numeric column, or a column
+//! chosen by its header name; and the cycles table it writes (`range,mean,count`, in the order
+//! found).
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -94,4 +95,19 @@ pub fn write_cycles(path: &Path, cycles: &[Cycle]) -> Result<(), AppError> {
         std::fs::create_dir_all(dir).map_err(|e| AppError::io(dir, e))?;
     }
     std::fs::write(path, s).map_err(|e| AppError::io(path, e))
+}
+
+/// The header's column names of a CSV file.
+pub fn column_names(path: &Path) -> Result<Vec<String>, AppError> {
+    let text = std::fs::read_to_string(path).map_err(|e| AppError::io(path, e))?;
+    let header = text
+        .lines()
+        .find(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .ok_or_else(|| {
+            bad(
+                path,
+                "expected a header line and rows of numbers; the file is empty".into(),
+            )
+        })?;
+    Ok(header.split(',').map(|c| c.trim().to_string()).collect())
 }

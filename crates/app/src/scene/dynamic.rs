@@ -12,6 +12,7 @@ use super::tables::*;
 use super::{invalid, Resolver};
 use crate::design::{safety_class_factor, Code, DesignSpec};
 use crate::error::SceneError;
+use crate::extremes::{Channel, ExtremesSpec, Settings, Source, Tail};
 use crate::fatigue::sn::SnCurve;
 use crate::fatigue::stress::{Fibre, PipeSection};
 use crate::fatigue::FatigueSpec;
@@ -48,6 +49,8 @@ pub struct DynamicSpec {
     pub fatigue: Option<FatigueSpec>,
     /// The strength check (`[design_check]`), if any.
     pub design_check: Option<DesignSpec>,
+    /// Short-term extremes (`[extremes]`), if any.
+    pub extremes: Option<ExtremesSpec>,
     /// The pipe's section for wall tension and stress range graphs: `[fatigue]`'s, or from
     /// `line.wall` and `line.contents_density` (no internal pressure) when both are given.
     pub section: Option<PipeSection>,
@@ -140,6 +143,10 @@ pub(super) fn dynamic_spec(
         Some(t) => Some(design_check_of(file, raw, t, d)?),
         None => None,
     };
+    let extremes = match &raw.extremes {
+        Some(t) => Some(extremes_of(file, raw, t, d, &gauges)?),
+        None => None,
+    };
     let l = &raw.line;
     let section = fatigue
         .as_ref()
@@ -159,6 +166,7 @@ pub(super) fn dynamic_spec(
     Ok(DynamicSpec {
         fatigue,
         design_check,
+        extremes,
         section,
         node_sections: Vec::new(),
         structural_damping,
@@ -707,5 +715,123 @@ fn design_check_of(
         youngs_modulus,
         poisson: 0.3,
         design_factor,
+    })
+}
+
+/// `[extremes]` → the channels and settings of the extreme-value analysis (see `docs/scene.md`).
+fn extremes_of(
+    file: &str,
+    raw: &RiserFile,
+    t: &ExtremesTable,
+    d: &DynamicTable,
+    gauges: &[Gauge],
+) -> Result<ExtremesSpec, SceneError> {
+    let names = t.channels.clone().unwrap_or_else(|| {
+        let mut v: Vec<String> = ["top_tension", "least_tension", "sag_moment"]
+            .map(String::from)
+            .to_vec();
+        if raw.design_check.is_some() {
+            v.push("utilisation".into());
+        }
+        v
+    });
+    if names.is_empty() {
+        return Err(invalid(file, "extremes.channels", "at least one channel"));
+    }
+    let mut channels = Vec::new();
+    for (i, name) in names.iter().enumerate() {
+        let key = format!("extremes.channels[{i}]");
+        let (source, tail) = match name.as_str() {
+            "top_tension" => (Source::TopTension, Tail::Max),
+            "least_tension" => (Source::LeastTension, Tail::Min),
+            "sag_moment" => (Source::SagMoment, Tail::Min),
+            "utilisation" => {
+                if raw.design_check.is_none() {
+                    return Err(invalid(
+                        file,
+                        key,
+                        "a [design_check] table as well (the utilisation is the check's)",
+                    ));
+                }
+                (Source::Utilisation, Tail::Max)
+            }
+            other => {
+                let gauge = other.strip_prefix("gauge:").ok_or_else(|| {
+                    invalid(
+                        file,
+                        &key,
+                        format!("top_tension, least_tension, sag_moment, utilisation or gauge:NAME[:max], got \"{other}\""),
+                    )
+                })?;
+                let (g, tail) = match gauge.strip_suffix(":max") {
+                    Some(g) => (g, Tail::Max),
+                    None => (gauge.strip_suffix(":min").unwrap_or(gauge), Tail::Min),
+                };
+                let k = gauges.iter().position(|x| x.name == g).ok_or_else(|| {
+                    invalid(
+                        file,
+                        &key,
+                        format!(
+                            "a gauge of the scene ({}), got \"{g}\"",
+                            if gauges.is_empty() {
+                                "it has none".to_string()
+                            } else {
+                                gauges
+                                    .iter()
+                                    .map(|x| x.name.as_str())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            }
+                        ),
+                    )
+                })?;
+                (Source::GaugeMoment(k), tail)
+            }
+        };
+        if channels.iter().any(|c: &Channel| c.name == *name) {
+            return Err(invalid(
+                file,
+                key,
+                format!("a channel not already listed, got \"{name}\" twice"),
+            ));
+        }
+        channels.push(Channel {
+            name: name.clone(),
+            source,
+            tail,
+        });
+    }
+    let start = t.start.unwrap_or(d.envelope_start);
+    if !(start.is_finite() && start >= 0.0 && start < d.duration) {
+        return Err(invalid(file, "extremes.start", "a time in [0, duration) s"));
+    }
+    let defaults = Settings::default();
+    let target = t.target_duration.unwrap_or(defaults.target);
+    positive(file, "extremes.target_duration", target, "a duration in s")?;
+    let quantile = t.quantile.unwrap_or(defaults.quantile);
+    if !(quantile > 0.0 && quantile < 1.0) {
+        return Err(invalid(
+            file,
+            "extremes.quantile",
+            "a probability of non-exceedance in (0, 1), e.g. 0.9",
+        ));
+    }
+    let block = t.block.unwrap_or(defaults.block);
+    positive(file, "extremes.block", block, "a block length in s")?;
+    if block < d.time_step {
+        return Err(invalid(
+            file,
+            "extremes.block",
+            "a block no shorter than dynamic.time_step",
+        ));
+    }
+    Ok(ExtremesSpec {
+        channels,
+        start,
+        settings: Settings {
+            target,
+            quantile,
+            block,
+        },
     })
 }

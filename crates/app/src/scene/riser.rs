@@ -302,6 +302,7 @@ fn check_no_dynamic_tables(file: &str, raw: &RiserFile) -> Result<(), SceneError
         (raw.structural_damping.is_some(), "structural_damping"),
         (raw.fatigue.is_some(), "fatigue"),
         (raw.design_check.is_some(), "design_check"),
+        (raw.extremes.is_some(), "extremes"),
         (!raw.gauge.is_empty(), "gauge"),
     ] {
         if present {

@@ -393,6 +393,18 @@ fn gamma_e() -> f64 {
     1.3
 }
 
+/// `[extremes]`: short-term extreme statistics of chosen channels (see `crate::extremes`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct ExtremesTable {
+    pub channels: Option<Vec<String>>,
+    pub start: Option<f64>,
+    pub target_duration: Option<f64>,
+    pub quantile: Option<f64>,
+    pub block: Option<f64>,
+}
+
 /// `[structural_damping]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -466,6 +478,7 @@ pub struct RiserFile {
     pub structural_damping: Option<StructuralDampingTable>,
     pub fatigue: Option<FatigueTable>,
     pub design_check: Option<DesignCheckTable>,
+    pub extremes: Option<ExtremesTable>,
     #[serde(default)]
     pub gauge: Vec<GaugeTable>,
     #[serde(default)]
