@@ -14,6 +14,8 @@ use serde_json::Value;
 use crate::design::{euler_load, DesignSpec, Evaluator, Term};
 use crate::error::AppError;
 use crate::observe::{Control, Observer, RunContext, StepView};
+use crate::scene::riser::DynamicSpec;
+use catena_fe::statics::LineResults;
 
 /// A node whose effective tension fell below minus its Euler load.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -149,19 +151,23 @@ impl DesignCheck {
 /// scene's), the statics' moments and tensions as the functional part. `None` when the run has
 /// no check or no section (the scene refuses a check without one).
 pub fn evaluator_of(ctx: &RunContext<'_>) -> Option<Evaluator> {
-    let spec = ctx.spec.design_check?;
-    let n = ctx.model.line.nodes();
-    let sections: Vec<_> = if ctx.spec.node_sections.is_empty() {
-        vec![ctx.spec.section?; n]
+    evaluator_for(ctx.spec, &ctx.statics.results)
+}
+
+/// [`evaluator_of`] from a dynamic specification and the statics' results (`n` nodes).
+pub fn evaluator_for(spec: &DynamicSpec, statics: &LineResults) -> Option<Evaluator> {
+    let check = spec.design_check?;
+    let n = statics.moment.len();
+    let sections: Vec<_> = if spec.node_sections.is_empty() {
+        vec![spec.section?; n]
     } else {
-        ctx.spec.node_sections.clone()
+        spec.node_sections.clone()
     };
-    let r = &ctx.statics.results;
     Some(Evaluator::new(
-        spec,
+        check,
         sections.into_iter(),
-        &r.moment,
-        &r.tension,
+        &statics.moment,
+        &statics.tension,
     ))
 }
 

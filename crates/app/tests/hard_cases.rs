@@ -332,12 +332,7 @@ fn friction_stick_slip_on_a_slow_surge() {
             "[seabed.friction]\naxial = 0.0 ",
         )
     });
-    let anchor_range = |r: &DynamicRun| {
-        let e = &r.envelopes.tension;
-        let n = e.max.len() - 1;
-        e.max[n] - e.min[n]
-    };
-    let (a, b) = (anchor_range(&with), anchor_range(&without));
+    let (a, b) = (anchor_tension_range(&with), anchor_tension_range(&without));
     println!(
         "friction stick-slip: anchor tension range {:.2} kN with friction, {:.2} kN without; {} cuts",
         a / 1e3,
@@ -345,6 +340,13 @@ fn friction_stick_slip_on_a_slow_surge() {
         with.cuts
     );
     assert!(a < 0.5 * b, "{a} vs {b}");
+}
+
+/// The effective tension's range at the anchor over the envelope window, N.
+fn anchor_tension_range(r: &DynamicRun) -> f64 {
+    let e = &r.envelopes.tension;
+    let n = e.max.len() - 1;
+    e.max[n] - e.min[n]
 }
 
 /// The same stick–slip on a seabed rising 2° towards the anchor (friction along the local mudline,
@@ -365,12 +367,7 @@ fn friction_stick_slip_on_a_sloping_seabed() {
             "[seabed.friction]\naxial = 0.0 ",
         )
     });
-    let anchor_range = |r: &DynamicRun| {
-        let e = &r.envelopes.tension;
-        let n = e.max.len() - 1;
-        e.max[n] - e.min[n]
-    };
-    let (a, b) = (anchor_range(&with), anchor_range(&without));
+    let (a, b) = (anchor_tension_range(&with), anchor_tension_range(&without));
     println!(
         "friction stick-slip on a 2° slope: anchor tension range {:.2} kN with friction, {:.2} kN without; {} cuts",
         a / 1e3,

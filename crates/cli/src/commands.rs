@@ -1077,22 +1077,11 @@ pub fn strength(
         .runs
         .first()
         .and_then(|r| r.scene.dynamic.as_ref())
-        .and_then(|d| {
-            let spec = d.design_check?;
-            let sections: Vec<_> = if d.node_sections.is_empty() {
-                vec![d.section?; arc.len()]
-            } else {
-                d.node_sections.clone()
-            };
-            let ev = catena::design::Evaluator::new(
-                spec,
-                sections.into_iter(),
-                &st.results.moment,
-                &st.results.tension,
-            );
+        .and_then(|d| catena::design_observer::evaluator_for(d, &st.results))
+        .map(|ev| {
             let mut u = vec![0.0; arc.len()];
             ev.along(&st.results, &mut u);
-            Some(u)
+            u
         })
         .unwrap_or_default();
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;

@@ -241,7 +241,7 @@ impl DynState {
                 ));
             }
         }
-        let n_fric = friction_nodes(&dm.line);
+        let n_fric = friction_anchor_len(&dm.line);
         if self.friction_anchor.len() != n_fric {
             return Err(format!(
                 "state.friction_anchor has {} entries, expected {n_fric} (one per node with seabed friction, two on a sloping mudline, none without)",
@@ -448,7 +448,7 @@ impl DynWorkspace {
                 f_prev: vec![0.0; 3 * n],
                 history: vec![untouched; n],
                 wave_grid: None,
-                friction_anchor: vec![0.0; friction_nodes(line)],
+                friction_anchor: vec![0.0; friction_anchor_len(line)],
             },
             factored_dt: None,
             wave_kin: vec![None; n],
@@ -495,7 +495,7 @@ impl DynWorkspace {
 
 /// The friction anchors' entries: one per node (x) when the seabed has friction, two (x, z) on a
 /// profile, none without friction.
-fn friction_nodes(line: &LineModel) -> usize {
+fn friction_anchor_len(line: &LineModel) -> usize {
     match line.seabed.as_ref().and_then(|s| s.friction) {
         Some(_) if line.mudline_profile.is_empty() => line.nodes(),
         Some(_) => 2 * line.nodes(),
@@ -534,7 +534,7 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
         wave_grid: None,
         // Friction acts from the start of the dynamics, each spring unstretched where the statics
         // left its node (the statics are frictionless).
-        friction_anchor: match friction_nodes(model) {
+        friction_anchor: match friction_anchor_len(model) {
             0 => Vec::new(),
             k if k == n => (0..n).map(|i| pl.base[3 * i] + u[3 * i]).collect(),
             _ => (0..3 * n)

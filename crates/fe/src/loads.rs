@@ -863,37 +863,8 @@ mod tests {
             .map(|_| model.seabed.as_ref().expect("sb").seabed.untouched())
             .collect();
         let zero = vec![0.0; 3 * N];
-        let run = |u: &[f64], with_k: bool| {
-            let mut asm = Assembler::new(&model).expect("assembler");
-            let mut scratch = LoadScratch::new(N);
-            asm.residual.fill(0.0);
-            asm.k.clear();
-            let m = LoadModel {
-                line: &model,
-                placement: &pl,
-                hydro: None,
-                structural_damping: None,
-            };
-            let pass = SeabedPass::Trial {
-                committed: &committed,
-                anchors: &anchors,
-                dt: 0.1,
-                memo: &mut [],
-                keep: None,
-            };
-            let at = Iterate {
-                u,
-                v: &zero,
-                wave_kin: &[],
-            };
-            let scale = TangentScale {
-                with_k,
-                k: 1.0,
-                c_v: 0.0,
-            };
-            assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
-            (asm, scratch)
-        };
+        let run =
+            |u: &[f64], with_k: bool| friction_pass(&model, &pl, &committed, &anchors, u, with_k);
         // The force, node by node.
         let (asm, scratch) = run(&zero, false);
         for i in 0..N {
@@ -983,37 +954,8 @@ mod tests {
             .map(|_| model.seabed.as_ref().expect("sb").seabed.untouched())
             .collect();
         let zero = vec![0.0; 3 * N];
-        let run = |u: &[f64], with_k: bool| {
-            let mut asm = Assembler::new(&model).expect("assembler");
-            let mut scratch = LoadScratch::new(N);
-            asm.residual.fill(0.0);
-            asm.k.clear();
-            let m = LoadModel {
-                line: &model,
-                placement: &pl,
-                hydro: None,
-                structural_damping: None,
-            };
-            let pass = SeabedPass::Trial {
-                committed: &committed,
-                anchors: &anchors,
-                dt: 0.1,
-                memo: &mut [],
-                keep: None,
-            };
-            let at = Iterate {
-                u,
-                v: &zero,
-                wave_kin: &[],
-            };
-            let scale = TangentScale {
-                with_k,
-                k: 1.0,
-                c_v: 0.0,
-            };
-            assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
-            (asm, scratch)
-        };
+        let run =
+            |u: &[f64], with_k: bool| friction_pass(&model, &pl, &committed, &anchors, u, with_k);
         // The force along the tangent: the residual less the contact's (along the normal).
         let (asm, scratch) = run(&zero, false);
         for i in 0..N {
@@ -1059,6 +1001,48 @@ mod tests {
         let w = worst(&kd, &fd);
         println!("friction on a slope: worst difference {w:.2e} of the largest entry");
         assert!(w < 1e-6, "{w}");
+    }
+
+    /// Every load of `model` at `u` (at rest), its seabed in the dynamics' trial pass from the
+    /// histories `committed` and the friction anchors `anchors`, with the tangent if `with_k`.
+    fn friction_pass(
+        model: &LineModel,
+        pl: &Placement,
+        committed: &[SeabedHistory],
+        anchors: &[f64],
+        u: &[f64],
+        with_k: bool,
+    ) -> (Assembler, LoadScratch) {
+        let mut asm = Assembler::new(model).expect("assembler");
+        let mut scratch = LoadScratch::new(N);
+        asm.residual.fill(0.0);
+        asm.k.clear();
+        let m = LoadModel {
+            line: model,
+            placement: pl,
+            hydro: None,
+            structural_damping: None,
+        };
+        let pass = SeabedPass::Trial {
+            committed,
+            anchors,
+            dt: 0.1,
+            memo: &mut [],
+            keep: None,
+        };
+        let zero = vec![0.0; 3 * N];
+        let at = Iterate {
+            u,
+            v: &zero,
+            wave_kin: &[],
+        };
+        let scale = TangentScale {
+            with_k,
+            k: 1.0,
+            c_v: 0.0,
+        };
+        assemble(&m, &at, pass, scale, &mut asm, &mut scratch);
+        (asm, scratch)
     }
 
     /// The attached bodies' drag damping against central differences in the velocities (bodies
