@@ -15,6 +15,7 @@
 //! - [`fatigue`]: rainflow counting, S-N curves, stress recovery (pure);
 //! - [`fatigue_observer`]: fatigue damage counted during a run;
 //! - [`study`]: the storm-table fatigue study;
+//! - [`sequence`]: storms in sequence, each from the state the last left (the seabed's memory);
 //! - [`error`]: the error types.
 
 pub mod checkpoint;
@@ -30,6 +31,7 @@ pub mod observe;
 pub mod outputs;
 pub mod run;
 pub mod scene;
+pub mod sequence;
 pub mod soil_test;
 pub mod statics;
 pub mod strength;

@@ -58,6 +58,8 @@ pub struct DynamicRun {
     pub wall_seconds: f64,
     /// Why the run ended before its duration, if it did.
     pub stop: Option<Stop>,
+    /// What the last converged step leaves for a run that continues from rest (a storm sequence).
+    pub carry: dynamics::Carry,
 }
 
 /// The cut steps kept in [`DynamicRun::cut_log`] (the count in [`DynamicRun::cuts`] is of all).
@@ -120,6 +122,10 @@ pub struct RunOptions {
     pub restart_file: String,
     /// Stop (successfully) after this many time steps, e.g. to end a job at a checkpoint.
     pub stop_after: Option<u64>,
+    /// Start at rest from what an earlier run left ([`dynamics::Carry`]: positions, seabed
+    /// histories, friction anchors) instead of the statics' state: a storm sequence's next storm.
+    /// The carry must be of this scene's Model (the same line, mesh and seabed law).
+    pub start: Option<dynamics::Carry>,
 }
 
 /// Places the gauges defined by a touchdown rule: midway (in arc length) between the static
@@ -192,7 +198,13 @@ pub fn run(
         file: statics.scene.file.clone(),
         source,
     })?;
-    let mut state = dynamics::initial_state(&dm, &statics.u, &mut ws);
+    let mut state = match &opts.start {
+        Some(c) => dynamics::carried_state(&dm, c, &mut ws).map_err(|what| AppError::Run {
+            file: statics.scene.file.clone(),
+            message: format!("the carried state does not fit this scene: {what}"),
+        })?,
+        None => dynamics::initial_state(&dm, &statics.u, &mut ws),
+    };
     let mut outputs = Outputs::build(&Setup {
         spec: &spec,
         model: &dm,
@@ -262,6 +274,7 @@ pub fn run(
         cut_log: tally.cut_log,
         wall_seconds: t0.elapsed().as_secs_f64(),
         stop,
+        carry: state.carry(),
     })
 }
 

@@ -84,10 +84,11 @@ pub struct Storm {
     pub duration: Option<f64>,
 }
 
+/// A storm table file: `[[storm]]` rows.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct StormsFile {
-    storm: Vec<Storm>,
+pub(crate) struct StormsFile {
+    pub(crate) storm: Vec<Storm>,
 }
 
 /// A study, read and checked: the storms' scenes built.

@@ -464,6 +464,7 @@ fn restart_from_checkpoint_is_bit_for_bit() {
             restart: Some(cp.clone()),
             restart_file: "cut.json".into(),
             stop_after: None,
+            start: None,
         },
     )
     .expect("runs");
@@ -494,6 +495,7 @@ fn restart_from_checkpoint_is_bit_for_bit() {
             restart: Some(cp),
             restart_file: "cut.json".into(),
             stop_after: None,
+            start: None,
         },
     )
     .expect_err("another scene");
@@ -596,6 +598,7 @@ fn malformed_checkpoints_are_refused_with_the_reason() {
                 restart: Some(cp),
                 restart_file: "bad.json".into(),
                 stop_after: None,
+                start: None,
             },
         )
         .expect_err(label)

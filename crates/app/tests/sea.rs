@@ -273,6 +273,7 @@ fn restart_with_sampled_kinematics_is_bit_for_bit() {
             restart: Some(cp),
             restart_file: "cut.json".into(),
             stop_after: None,
+            start: None,
         },
     )
     .expect("runs");

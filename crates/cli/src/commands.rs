@@ -19,7 +19,7 @@ use catena_io::{plot, report, soil};
 
 use crate::progress::{ProgressBar, SignalStop};
 
-fn write_json(path: &Path, v: &serde_json::Value) -> Result<(), AppError> {
+pub(crate) fn write_json(path: &Path, v: &serde_json::Value) -> Result<(), AppError> {
     let text = serde_json::to_string_pretty(v).map_err(|e| AppError::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -145,6 +145,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
                 .unwrap_or_default(),
             restart,
             stop_after: opts.stop_after,
+            start: None,
         },
     )?;
     drop(extra);
@@ -1204,7 +1205,7 @@ pub fn strength(
 /// it finishes and `done` told (with how many are done); an item whose file holds a result that
 /// `reuse` accepts is taken from there and not run. Returns the results in the items' order and
 /// how many were reused. (The fatigue and the strength studies: a rerun resumes.)
-fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwned + Send>(
+pub(crate) fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwned + Send>(
     file: &str,
     items: &[I],
     jobs: usize,

@@ -112,6 +112,25 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Storms in sequence: each storm of a list (or a random order by probability) run from the
+    /// state the last one left, the line brought to rest between them (the seabed's memory: its
+    /// trench, its degraded strength); beside it the same storms each from the as-laid state.
+    /// Writes DIR/visits/, DIR/as-laid/ (a rerun resumes after the last finished visit),
+    /// summary.json, trench.csv, life.csv and sequence.png.
+    Sequence {
+        /// The sequence file (TOML with [sequence] and [fatigue]).
+        sequence: PathBuf,
+        /// The output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Threads: the sequence takes one, the as-laid runs the others (at least 2 to run them
+        /// alongside).
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
+        /// Do not print a line per visit.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Parameter sweep: a plan's key paths varied over a base scene or fatigue study, expanded into
     /// a sorted list of runs (point × storm); each run writes DIR/runs/<id>.json (a rerun skips the
     /// runs done), then DIR/sweep.csv and sweep.json merge them. On a cluster, --shard i --shards
@@ -283,6 +302,12 @@ fn main() -> ExitCode {
             jobs,
             quiet,
         } => commands::strength(&study, &out, jobs, !quiet).map(|t| print!("{t}")),
+        Command::Sequence {
+            sequence,
+            out,
+            jobs,
+            quiet,
+        } => catena_cli::sequence::run(&sequence, &out, jobs, !quiet).map(|t| print!("{t}")),
         Command::Sweep {
             plan,
             out,

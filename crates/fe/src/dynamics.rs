@@ -522,26 +522,96 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
             },
         )
         .collect();
+    // Friction acts from the start of the dynamics, each spring unstretched where the statics
+    // left its node (the statics are frictionless).
+    let friction_anchor = match friction_anchor_len(model) {
+        0 => Vec::new(),
+        k if k == n => (0..n).map(|i| pl.base[3 * i] + u[3 * i]).collect(),
+        _ => (0..3 * n)
+            .filter(|g| g % 3 != 2)
+            .map(|g| pl.base[g] + u[g])
+            .collect(),
+    };
+    at_rest(
+        dm,
+        Carry {
+            u: u.to_vec(),
+            history,
+            friction_anchor,
+        },
+        ws,
+    )
+}
+
+/// What a run leaves for the next one when the line has been brought to rest (a storm sequence's
+/// calm interval): positions, every node's committed seabed history (its trench, its degradation)
+/// and friction anchors. Velocities and accelerations are not carried: the next run starts at rest.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Carry {
+    /// Displacements from the placement's base, 3 per node.
+    pub u: Vec<f64>,
+    /// Each node's committed seabed history.
+    pub history: Vec<SeabedHistory>,
+    /// Each node's friction anchor ([`DynState::friction_anchor`]).
+    pub friction_anchor: Vec<f64>,
+}
+
+impl DynState {
+    /// What this State leaves for a run that continues from rest ([`Carry`]).
+    pub fn carry(&self) -> Carry {
+        Carry {
+            u: self.u.clone(),
+            history: self.history.clone(),
+            friction_anchor: self.friction_anchor.clone(),
+        }
+    }
+}
+
+/// The dynamic State at rest from a carried one ([`Carry`]): `t = 0`, zero velocities, the
+/// histories and anchors as carried, and the lumped `a0 = −M⁻¹F(u, 0)` (zero at an equilibrium).
+/// The carry is checked to fit the Model (the error says which field is wrong).
+pub fn carried_state(
+    dm: &DynamicModel,
+    carry: &Carry,
+    ws: &mut DynWorkspace,
+) -> Result<DynState, String> {
+    let n = dm.line.nodes();
+    let probe = DynState {
+        t: 0.0,
+        step: 0,
+        u: carry.u.clone(),
+        v: vec![0.0; 3 * n],
+        a: vec![0.0; 3 * n],
+        f_prev: vec![0.0; 3 * n],
+        history: carry.history.clone(),
+        wave_grid: None,
+        friction_anchor: carry.friction_anchor.clone(),
+    };
+    probe.check_fits(dm)?;
+    Ok(at_rest(dm, carry.clone(), ws))
+}
+
+/// The State at rest at `carry`, its forces evaluated and its acceleration `−M⁻¹F` on the free dofs.
+fn at_rest(dm: &DynamicModel, carry: Carry, ws: &mut DynWorkspace) -> DynState {
+    let model = &dm.line;
+    let n = model.nodes();
+    let v = vec![0.0; 3 * n];
+    let Carry {
+        u,
+        history,
+        friction_anchor,
+    } = carry;
     ws.factored_dt = None;
     let mut state = DynState {
         t: 0.0,
         step: 0,
-        u: u.to_vec(),
+        u,
         v: v.clone(),
         a: v,
         f_prev: vec![0.0; 3 * n],
         history,
         wave_grid: None,
-        // Friction acts from the start of the dynamics, each spring unstretched where the statics
-        // left its node (the statics are frictionless).
-        friction_anchor: match friction_anchor_len(model) {
-            0 => Vec::new(),
-            k if k == n => (0..n).map(|i| pl.base[3 * i] + u[3 * i]).collect(),
-            _ => (0..3 * n)
-                .filter(|g| g % 3 != 2)
-                .map(|g| pl.base[g] + u[g])
-                .collect(),
-        },
+        friction_anchor,
     };
     ws.u.copy_from_slice(&state.u);
     ws.v.copy_from_slice(&state.v);

@@ -264,6 +264,7 @@ fn rq_far_field_embedment_is_the_laws_static_solution() {
         lambda_suc: 1.0,
         lambda_rep: 0.3,
         liftoff_smoothing: false,
+        degradation: None,
     };
     let seabed = Seabed {
         law: Law::RandolphQuiggin(RandolphQuiggin::new(p).expect("valid")),

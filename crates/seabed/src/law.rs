@@ -330,6 +330,18 @@ impl Seabed {
         self.evaluate(&self.untouched(), z, 0.0, 0.0)
     }
 
+    /// A node's history after a rest of `t` seconds (a calm interval between storms): the
+    /// Randolph–Quiggin law's regain of degraded strength, if its scene asks for it
+    /// ([`crate::degradation`]); otherwise unchanged.
+    pub fn rest(&self, h: &SeabedHistory, t: f64) -> SeabedHistory {
+        match (&self.law, h) {
+            (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
+                SeabedHistory::RandolphQuiggin(rq.rest(h, t))
+            }
+            _ => *h,
+        }
+    }
+
     /// The history of a node at the start of a dynamic run, from its static penetration `z_s`.
     pub fn start_of_dynamics(&self, z_s: f64) -> SeabedHistory {
         match &self.law {

@@ -19,6 +19,8 @@
 //! Modules:
 //! - [`rq`]: the Randolph & Quiggin (2009) non-linear hysteretic law (OMAE2009-79259), read exactly as
 //!   `docs/seabed-model.md` fixes it;
+//! - [`degradation`]: cyclic strength degradation (Einav & Randolph 2005) and regain at rest, options
+//!   of the Randolph–Quiggin law;
 //! - [`linear`]: the linear elastic tensionless seabed, `P = k·D·z`, with optional damping;
 //! - [`buoyancy`]: the soil buoyancy force of the paper's eq. 15;
 //! - [`law`]: [`law::Seabed`], the law a scene chose plus optional buoyancy, behind one interface,
@@ -27,6 +29,7 @@
 //! - [`roots`]: the bisection and safeguarded Newton root finder every scan shares.
 
 pub mod buoyancy;
+pub mod degradation;
 pub mod element_test;
 pub mod law;
 pub mod linear;
@@ -34,6 +37,7 @@ pub mod roots;
 pub mod rq;
 
 pub use buoyancy::SoilBuoyancy;
+pub use degradation::{Degradation, Regain, Wear};
 pub use law::{Seabed, SeabedHistory, SeabedResponse, SeabedTrial, TrialMemo};
 pub use linear::{LinearHistory, LinearSeabed};
 pub use rq::{Mode, OnsetMemo, RandolphQuiggin, RqHistory, RqParams, RqTrial};

@@ -34,6 +34,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::degradation::{Degradation, Wear};
 use crate::{check, ParamError};
 
 /// The lift-off band, in units of `D/Kmax` (`1/k`): over the last `LIFTOFF_BAND/k` of an uplift
@@ -69,6 +70,10 @@ pub struct RqParams {
     /// Cap uplift `P` by `P_IP(z)` (the spec's optional lift-off smoothing). Default off.
     #[serde(default)]
     pub liftoff_smoothing: bool,
+    /// Cyclic degradation of the strength and its regain at rest ([`crate::degradation`]); `None`:
+    /// the paper's law.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub degradation: Option<Degradation>,
 }
 
 impl RqParams {
@@ -85,6 +90,7 @@ impl RqParams {
             lambda_suc: 0.4,
             lambda_rep: 0.2,
             liftoff_smoothing: false,
+            degradation: None,
         }
     }
 
@@ -101,6 +107,7 @@ impl RqParams {
             lambda_suc: 0.7,
             lambda_rep: 0.4,
             liftoff_smoothing: false,
+            degradation: None,
         }
     }
 
@@ -141,6 +148,9 @@ impl RqParams {
             self.lambda_rep,
             "lambda_rep >= 0",
         )?;
+        if let Some(d) = &self.degradation {
+            d.validate()?;
+        }
         Ok(())
     }
 }
@@ -232,6 +242,9 @@ pub struct RqHistory {
     pub z_p0: f64,
     /// Has the node ever been in contact.
     pub contacted: bool,
+    /// The soil's degradation at the node ([`crate::degradation`]): intact without the option.
+    #[serde(default)]
+    pub wear: Wear,
 }
 
 /// The last [`RandolphQuiggin::suction_onset`] a node's trials computed and the committed
@@ -301,6 +314,7 @@ impl RqHistory {
             z_max: 0.0,
             z_p0: 0.0,
             contacted: false,
+            wear: Wear::default(),
         }
     }
 }
@@ -428,6 +442,7 @@ impl RandolphQuiggin {
                 z_max: z_s,
                 z_p0: 0.0,
                 contacted: true,
+                wear: Wear::default(),
             }
         } else {
             RqHistory::untouched(z_s)
@@ -641,6 +656,82 @@ impl RandolphQuiggin {
     /// [`RandolphQuiggin::evaluate`], taking the suction onset from `memo` when it holds the one
     /// this history needs (the same values to the bit).
     pub fn evaluate_with(&self, h: &RqHistory, z: f64, memo: &mut OnsetMemo) -> RqTrial {
+        match &self.p.degradation {
+            None => self.evaluate_intact(h, z, memo),
+            Some(d) => self.evaluate_degrading(d, h, z, memo),
+        }
+    }
+
+    /// The law on soil of strength factor `delta` (`su0` and `ρ_su` scaled; every other constant
+    /// the same).
+    fn weakened(&self, delta: f64) -> Self {
+        Self {
+            p: RqParams {
+                su0: delta * self.p.su0,
+                su_gradient: delta * self.p.su_gradient,
+                ..self.p
+            },
+            ..*self
+        }
+    }
+
+    /// A trial with cyclic degradation ([`crate::degradation`]): the episode's strength factor is
+    /// set from the committed `ξ` when the trial starts an episode (a reversal or a re-contact) and
+    /// kept otherwise; the paper's law runs on that strength; the step's plastic displacement is
+    /// added to `ξ` in the next history.
+    fn evaluate_degrading(
+        &self,
+        d: &Degradation,
+        h: &RqHistory,
+        z: f64,
+        memo: &mut OnsetMemo,
+    ) -> RqTrial {
+        let starts = match h.mode {
+            Mode::NotInContact => z > 0.0,
+            Mode::InitialPenetration | Mode::Repenetration => z < h.z_prev,
+            Mode::Uplift => z > h.z_prev,
+        };
+        let strength = if starts {
+            d.strength(h.wear.xi)
+        } else {
+            h.wear.strength
+        };
+        let law = self.weakened(strength);
+        let mut t = law.evaluate_intact(h, z, memo);
+        let (z1, z2) = (h.z_prev.max(0.0), z.max(0.0));
+        let dz = z2 - z1;
+        let z_ref = z1.max(z2).max(t.next.z0).max(t.next.z_star.unwrap_or(0.0));
+        let k_e = law.k * law.pu(z_ref).0;
+        let plastic = if k_e > 0.0 {
+            (dz - (t.p - h.p_prev) / k_e).abs().min(dz.abs())
+        } else {
+            dz.abs()
+        };
+        t.next.wear = Wear {
+            xi: h.wear.xi + plastic / self.p.diameter,
+            strength,
+        };
+        t
+    }
+
+    /// The history of a node after a rest of `t` seconds (a calm interval): with regain, the lost
+    /// strength recovered by `U(t)` ([`Degradation::rested`]), in force from the node's next
+    /// episode; otherwise unchanged.
+    pub fn rest(&self, h: &RqHistory, t: f64) -> RqHistory {
+        match &self.p.degradation {
+            Some(d) => RqHistory {
+                wear: Wear {
+                    xi: d.rested(h.wear.xi, t),
+                    ..h.wear
+                },
+                ..*h
+            },
+            None => *h,
+        }
+    }
+
+    /// The paper's law (no degradation) from the committed history.
+    fn evaluate_intact(&self, h: &RqHistory, z: f64, memo: &mut OnsetMemo) -> RqTrial {
         match h.mode {
             Mode::NotInContact => {
                 if z <= 0.0 {
@@ -707,6 +798,7 @@ impl RandolphQuiggin {
                 z_max: h.z_max,
                 z_p0,
                 contacted: h.contacted,
+                wear: h.wear,
             },
         }
     }
@@ -729,6 +821,7 @@ impl RandolphQuiggin {
                 z_max: h.z_max.max(z),
                 z_p0: h.z_p0,
                 contacted: true,
+                wear: h.wear,
             },
         }
     }
@@ -756,6 +849,7 @@ impl RandolphQuiggin {
                 z_max: h.z_max.max(z),
                 z_p0,
                 contacted: true,
+                wear: h.wear,
             },
         }
     }
@@ -778,6 +872,7 @@ impl RandolphQuiggin {
                 z_max: h.z_max.max(z),
                 z_p0: h.z_p0,
                 contacted: true,
+                wear: h.wear,
             },
         }
     }

@@ -32,6 +32,7 @@ fn params() -> impl Strategy<Value = RqParams> {
                 lambda_suc,
                 lambda_rep,
                 liftoff_smoothing: smooth,
+                degradation: None,
             },
         )
 }

@@ -17,10 +17,13 @@
 //! | `f_b`, `soil_density`, `water_density` | —, kg/m³, kg/m³ | none | soil buoyancy (eq. 15): all three or none |
 //! | `profile` | [[m, m], …] | flat at z = 0 | the mudline's height `[x, z]` along the route, piecewise linear, constant beyond the ends (riser scenes) |
 //! | `[[seabed.zone]]` `from_x`, `to_x` and any law key | m, m, … | none | a stretch of the route `[from_x, to_x)` (riser scenes) whose law keys override the table's; zones may not overlap |
+//! | `[seabed.degradation]` `sensitivity`, `ductility`, `regain_t50`, `regain_exponent` | —, D, s, — | none | cyclic strength degradation (R–Q): sensitivity S_t ≥ 1, ductility ξ95 > 0 in pipe diameters of accumulated plastic displacement; regain at rest (both or neither): t50 > 0, m > 0 |
 //! | `[seabed.friction]` `axial`, `mobilisation` | —, m | none | axial friction (riser scenes, dynamics only): Coulomb μ on the normal seabed force, and the displacement δ > 0 that mobilises it |
 
 use catena_seabed::law::{Law, Seabed};
-use catena_seabed::{LinearSeabed, ParamError, RandolphQuiggin, RqParams, SoilBuoyancy};
+use catena_seabed::{
+    Degradation, LinearSeabed, ParamError, RandolphQuiggin, Regain, RqParams, SoilBuoyancy,
+};
 use serde::Deserialize;
 
 use super::{invalid, required};
@@ -58,6 +61,7 @@ pub struct SeabedTable {
     pub soil_density: Option<f64>,
     pub water_density: Option<f64>,
     pub friction: Option<FrictionTable>,
+    pub degradation: Option<DegradationTable>,
     #[serde(default)]
     pub zone: Vec<ZoneTable>,
     pub profile: Option<Vec<Vec<f64>>>,
@@ -81,6 +85,60 @@ pub struct ZoneTable {
     pub f_suc: Option<f64>,
     pub lambda_suc: Option<f64>,
     pub lambda_rep: Option<f64>,
+}
+
+/// `[seabed.degradation]` as written (Randolph–Quiggin only).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct DegradationTable {
+    pub sensitivity: Option<f64>,
+    pub ductility: Option<f64>,
+    pub regain_t50: Option<f64>,
+    pub regain_exponent: Option<f64>,
+}
+
+impl DegradationTable {
+    /// Checked: `sensitivity` and `ductility` required; `regain_t50` and `regain_exponent` both or
+    /// neither.
+    fn build(&self, file: &str, table: &str) -> Result<Degradation, SceneError> {
+        let key = |k: &str| format!("{table}.degradation.{k}");
+        let sensitivity = required(
+            file,
+            &key("sensitivity"),
+            self.sensitivity,
+            "the sensitivity S_t >= 1 (intact over remoulded strength)",
+        )?;
+        let ductility = required(
+            file,
+            &key("ductility"),
+            self.ductility,
+            "the ductility xi95 > 0 (pipe diameters of accumulated plastic displacement)",
+        )?;
+        let regain = match (self.regain_t50, self.regain_exponent) {
+            (None, None) => None,
+            (Some(t50), Some(exponent)) => Some(Regain { t50, exponent }),
+            (Some(_), None) => {
+                return Err(invalid(
+                    file,
+                    key("regain_exponent"),
+                    "the regain exponent m > 0 (regain needs regain_t50 and regain_exponent)",
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(invalid(
+                    file,
+                    key("regain_t50"),
+                    "the regain time t50 > 0 s (regain needs regain_t50 and regain_exponent)",
+                ))
+            }
+        };
+        Ok(Degradation {
+            sensitivity,
+            ductility,
+            regain,
+        })
+    }
 }
 
 /// `[seabed.friction]` as written.
@@ -286,10 +344,10 @@ impl SeabedTable {
         ];
         let law = match model {
             SeabedModel::Linear => {
-                let stray = rq_keys
-                    .iter()
-                    .map(|(k, v)| (*k, v.is_some()))
-                    .chain([("liftoff_smoothing", self.liftoff_smoothing.is_some())]);
+                let stray = rq_keys.iter().map(|(k, v)| (*k, v.is_some())).chain([
+                    ("liftoff_smoothing", self.liftoff_smoothing.is_some()),
+                    ("degradation", self.degradation.is_some()),
+                ]);
                 reject_stray(file, table, "linear", stray)?;
                 let stiffness = required(
                     file,
@@ -325,6 +383,7 @@ impl SeabedTable {
                     lambda_suc: get("lambda_suc", self.lambda_suc, "the suction decay distance")?,
                     lambda_rep: get("lambda_rep", self.lambda_rep, "the repenetration offset")?,
                     liftoff_smoothing: self.liftoff_smoothing.unwrap_or(false),
+                    degradation: self.degradation.map(|d| d.build(file, table)).transpose()?,
                 };
                 Law::RandolphQuiggin(
                     RandolphQuiggin::new(p).map_err(|e| param_error(file, table, e))?,
