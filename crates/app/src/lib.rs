@@ -12,12 +12,14 @@
 //! - [`checkpoint`]: checkpoints (State, solver memory, observers' states, scene hash, version);
 //! - [`convergence`]: the convergence study (what accuracy costs in time);
 //! - [`soil_test`]: the soil element test;
+//! - [`calibrate`]: the Randolph–Quiggin parameters fitted to an element test;
 //! - [`fatigue`]: rainflow counting, S-N curves, stress recovery (pure);
 //! - [`fatigue_observer`]: fatigue damage counted during a run;
 //! - [`study`]: the storm-table fatigue study;
 //! - [`sequence`]: storms in sequence, each from the state the last left (the seabed's memory);
 //! - [`error`]: the error types.
 
+pub mod calibrate;
 pub mod checkpoint;
 pub mod convergence;
 pub mod design;

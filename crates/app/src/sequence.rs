@@ -15,19 +15,21 @@
 //! record = 600.0                # s counted per visit, after the transient
 //! transient = 200.0             # s discarded at the start of each visit
 //! calm = 86400.0                # s of rest between visits (strength regain, if the soil has it)
-//! settle = 300.0                # s of calm dynamics that bring the line to rest (default 300)
+//! settle = 200.0                # s of calm dynamics that bring the line to rest (default 200)
 //! settle_time_step = 0.05       # s (default: the scene's time step)
 //! as_laid = true                # also run every visit from the as-laid state (default true)
 //! [sequence.random]             # instead of `order`:
 //! seed = 1                      # the order's seed
-//! visits = 30                   # visits in all, shared among the storms by probability
+//! visits = 60                   # visits in all: one per storm, the rest by probability
+//! every_storm = true            # one visit to every storm first (default true)
 //! [fatigue]                     # as in a fatigue study
 //! ```
 //!
 //! **A visit** is one storm of the table run for `transient + record` seconds with the fatigue
-//! observer. With `random`, the `visits` are shared among the storms by their probabilities (largest
-//! remainders; a storm whose share rounds to nothing is not visited and its probability is reported
-//! as not covered) and put in a random order drawn from the seed (ChaCha8, Fisher–Yates). Storm
+//! observer. With `random`, every storm is visited once (`every_storm`, default: the rare storms
+//! make the touchdown zone's damage) and the other visits are shared among the storms by their
+//! probabilities (largest remainders; with `every_storm = false` all of them are, and a storm whose
+//! share rounds to nothing is not visited: its probability is reported as not covered) and put in a random order drawn from the seed (ChaCha8, Fisher–Yates). Storm
 //! `i`'s `k`-th visit uses the wave seed `seed_i + 1000·k` (the study's seed for the first).
 //!
 //! **The cut.** Storm `i` fills `p_i·Y` seconds of a year; its `n_i` visits, each counting `T`
@@ -78,6 +80,7 @@ use crate::study::{check_sea, read_base, read_storm_table, Sea, Storm, StormsFil
 pub struct RandomTable {
     pub seed: u64,
     pub visits: usize,
+    pub every_storm: Option<bool>,
 }
 
 /// `[sequence]`.
@@ -201,14 +204,23 @@ fn visits_of(storms: &[Storm], order: &[usize], record: f64) -> Vec<Visit> {
         .collect()
 }
 
-/// `visits` shared among the storms by probability (largest remainders), shuffled by `seed`.
-pub fn random_order(probabilities: &[f64], visits: usize, seed: u64) -> Vec<usize> {
+/// `visits` shared among the storms by probability (largest remainders; with `every_storm`, one
+/// visit to each storm first and the rest by probability), shuffled by `seed` (ChaCha8,
+/// Fisher–Yates). `visits` must be at least the storms' count with `every_storm`.
+pub fn random_order(
+    probabilities: &[f64],
+    visits: usize,
+    seed: u64,
+    every_storm: bool,
+) -> Vec<usize> {
     let total: f64 = probabilities.iter().sum();
+    let first = usize::from(every_storm);
+    let shared = visits - first * probabilities.len();
     let exact: Vec<f64> = probabilities
         .iter()
-        .map(|p| p / total * visits as f64)
+        .map(|p| p / total * shared as f64)
         .collect();
-    let mut counts: Vec<usize> = exact.iter().map(|x| x.floor() as usize).collect();
+    let mut counts: Vec<usize> = exact.iter().map(|x| first + x.floor() as usize).collect();
     let mut left = visits - counts.iter().sum::<usize>();
     let mut by_remainder: Vec<usize> = (0..exact.len()).collect();
     by_remainder.sort_by(|&a, &b| {
@@ -248,7 +260,7 @@ impl Sequence {
         positive_time(&file, "sequence.record", s.record, false)?;
         positive_time(&file, "sequence.transient", s.transient, true)?;
         positive_time(&file, "sequence.calm", s.calm, true)?;
-        let settle = s.settle.unwrap_or(300.0);
+        let settle = s.settle.unwrap_or(200.0);
         positive_time(&file, "sequence.settle", settle, false)?;
         let (scene_path, base) = read_base(&file, &dir, &s.scene)?;
         let settle_dt = s
@@ -306,8 +318,22 @@ impl Sequence {
                     .collect::<Result<_, _>>()?
             }
             (None, Some(r)) => {
-                if r.visits == 0 {
-                    return Err(invalid(&file, "sequence.random.visits", "at least 1 visit").into());
+                let every = r.every_storm.unwrap_or(true);
+                let least = if every { table.storm.len() } else { 1 };
+                if r.visits < least {
+                    return Err(invalid(
+                        &file,
+                        "sequence.random.visits",
+                        format!(
+                            "at least {least} visits ({})",
+                            if every {
+                                "one per storm of the table: every_storm = true"
+                            } else {
+                                "one"
+                            }
+                        ),
+                    )
+                    .into());
                 }
                 let p: Vec<f64> = table.storm.iter().map(|st| st.probability).collect();
                 if p.iter().sum::<f64>() <= 0.0 {
@@ -318,7 +344,7 @@ impl Sequence {
                     )
                     .into());
                 }
-                random_order(&p, r.visits, r.seed)
+                random_order(&p, r.visits, r.seed, every)
             }
             _ => return Err(invalid(
                 &file,

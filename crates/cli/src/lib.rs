@@ -2,6 +2,7 @@
 //! its files, runs the library (`catena`) and writes its outputs (`catena-io`). The binary
 //! (`src/main.rs`) parses the arguments with clap and installs the SIGINT/SIGTERM handler.
 
+pub mod calibrate;
 pub mod commands;
 pub mod progress;
 pub mod sequence;

@@ -34,6 +34,27 @@ enum Command {
         #[arg(long, conflicts_with = "plot")]
         no_plot: bool,
     },
+    /// Fits the Randolph–Quiggin law's parameters (a chosen subset; the rest as in the start table)
+    /// to an element test: a CSV with columns z (m) and P (N/m), optional leg (as `catena
+    /// soil-test` writes). Writes the fitted [seabed] table to OUT (its misfit and each parameter's
+    /// determination in comments), OUT's .json report and .png plot beside it.
+    Calibrate {
+        /// The test CSV.
+        test: PathBuf,
+        /// The law (randolph-quiggin).
+        #[arg(long, default_value = "randolph-quiggin")]
+        law: String,
+        /// A TOML file with the start [seabed] table (diameter, every parameter).
+        #[arg(long)]
+        start: PathBuf,
+        /// The keys to fit, comma-separated (su0, su_gradient, a, b, k_max, f_suc, lambda_suc,
+        /// lambda_rep).
+        #[arg(long)]
+        fit: String,
+        /// The fitted table to write (TOML).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Statics, then dynamics with top-end motion. Writes DIR/results.h5 (/static and /dynamic),
     /// DIR/summary.json and plots (static.png, dynamic.png, ranges.png, gauges.png with gauges, sea.png with waves).
     Run {
@@ -226,6 +247,13 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Calibrate {
+            test,
+            law,
+            start,
+            fit,
+            out,
+        } => catena_cli::calibrate::run(&test, &law, &start, &fit, &out).map(|t| print!("{t}")),
         Command::SoilTest {
             case,
             out,

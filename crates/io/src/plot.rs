@@ -1725,3 +1725,68 @@ pub fn sequence(path: &Path, p: &SequencePlot<'_>) -> Result<(), AppError> {
     root.present().map_err(&err)?;
     Ok(())
 }
+
+/// The calibration's figure (`catena calibrate`): the test's force against penetration with the
+/// law at the start and fitted parameters (left), and each point's misfit at the fit (right).
+pub fn calibration(
+    path: &Path,
+    title: &str,
+    z: &[f64],
+    (test, start, fit): (&[f64], &[f64], &[f64]),
+) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let root = BitMapBackend::new(path, (1600, 700)).into_drawing_area();
+    root.fill(&WHITE).map_err(&err)?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(&err)?;
+    let areas = root.split_evenly((1, 2));
+    let curve =
+        |p: &[f64]| -> Vec<(f64, f64)> { z.iter().copied().zip(p.iter().copied()).collect() };
+    legend_panel(
+        &areas[0],
+        "soil resistance against penetration",
+        ("penetration of the invert z (m)", "P (N/m)"),
+        &[
+            Labelled {
+                points: curve(start),
+                colour: RGBColor(150, 150, 150),
+                label: "law, start parameters",
+            },
+            Labelled {
+                points: curve(test),
+                colour: RGBColor(20, 20, 20),
+                label: "test",
+            },
+            Labelled {
+                points: curve(fit),
+                colour: RGBColor(200, 30, 30),
+                label: "law, fitted parameters",
+            },
+        ],
+        &[],
+        None,
+    )
+    .map_err(&perr)?;
+    lines_panel(
+        &areas[1],
+        "misfit at the fit, point by point",
+        ("point of the test", "P_fit − P_test (N/m)"),
+        &[Labelled {
+            points: fit
+                .iter()
+                .zip(test)
+                .enumerate()
+                .map(|(i, (a, b))| (i as f64, a - b))
+                .collect(),
+            colour: RGBColor(200, 30, 30),
+            label: "",
+        }],
+        &[],
+        None,
+        false,
+    )
+    .map_err(&perr)?;
+    root.present().map_err(&err)?;
+    Ok(())
+}
