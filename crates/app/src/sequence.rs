@@ -71,7 +71,7 @@ use crate::run::{self, RunOptions};
 use crate::scene::edit::Edit;
 use crate::scene::riser::RiserScene;
 use crate::scene::{invalid, parse, DirResolver};
-use crate::study::{check_sea, read_base, read_storm_table, Sea, Storm, StormsFile, YEAR};
+use crate::study::{check_sea, read_base_as, read_storm_table_as, Sea, Storm, StormsFile, YEAR};
 
 /// `[sequence.random]`.
 #[derive(Debug, Clone, Deserialize)]
@@ -262,7 +262,7 @@ impl Sequence {
         positive_time(&file, "sequence.calm", s.calm, true)?;
         let settle = s.settle.unwrap_or(200.0);
         positive_time(&file, "sequence.settle", settle, false)?;
-        let (scene_path, base) = read_base(&file, &dir, &s.scene)?;
+        let (scene_path, base) = read_base_as(&file, "sequence", &dir, &s.scene)?;
         let settle_dt = s
             .settle_time_step
             .unwrap_or_else(|| base.dynamic.as_ref().map_or(0.05, |d| d.dt));
@@ -275,7 +275,8 @@ impl Sequence {
             )
             .into());
         }
-        let (sfile, table): (String, StormsFile) = read_storm_table(&file, &dir, &s.storms)?;
+        let (sfile, table): (String, StormsFile) =
+            read_storm_table_as(&file, "sequence", &dir, &s.storms)?;
         if table.storm.is_empty() {
             return Err(invalid(&file, "sequence.storms", "at least one [[storm]]").into());
         }

@@ -243,27 +243,29 @@ pub(crate) fn read_base(
     dir: &Path,
     scene: &str,
 ) -> Result<(PathBuf, RiserScene), AppError> {
+    read_base_as(file, "study", dir, scene)
+}
+
+/// [`read_base`] for a file whose table is `table` (`study`, `sequence`): errors name
+/// `table.scene`.
+pub(crate) fn read_base_as(
+    file: &str,
+    table: &str,
+    dir: &Path,
+    scene: &str,
+) -> Result<(PathBuf, RiserScene), AppError> {
+    let key = format!("{table}.scene");
     let scene_path = dir.join(scene);
     let base = crate::statics::read_scene(&scene_path).map_err(|e| match e {
-        AppError::Io { .. } => {
-            invalid(file, "study.scene", format!("a readable scene file ({e})")).into()
-        }
+        AppError::Io { .. } => invalid(file, &key, format!("a readable scene file ({e})")).into(),
         other => other,
     })?;
-    let dynamic = base.dynamic.as_ref().ok_or_else(|| {
-        AppError::from(invalid(
-            file,
-            "study.scene",
-            "a scene with a [dynamic] table",
-        ))
-    })?;
+    let dynamic = base
+        .dynamic
+        .as_ref()
+        .ok_or_else(|| AppError::from(invalid(file, &key, "a scene with a [dynamic] table")))?;
     if dynamic.environment.waves.is_none() || base.doc.get("waves").is_none() {
-        return Err(invalid(
-            file,
-            "study.scene",
-            "a scene with a [waves] table (jonswap)",
-        )
-        .into());
+        return Err(invalid(file, &key, "a scene with a [waves] table (jonswap)").into());
     }
     Ok((scene_path, base))
 }
@@ -275,11 +277,22 @@ pub(crate) fn read_storm_table<T: serde::de::DeserializeOwned>(
     dir: &Path,
     storms: &str,
 ) -> Result<(String, T), AppError> {
+    read_storm_table_as(file, "study", dir, storms)
+}
+
+/// [`read_storm_table`] for a file whose table is `table`: errors name `table.storms`.
+pub(crate) fn read_storm_table_as<T: serde::de::DeserializeOwned>(
+    file: &str,
+    table: &str,
+    dir: &Path,
+    storms: &str,
+) -> Result<(String, T), AppError> {
+    let key = format!("{table}.storms");
     let storms_path = dir.join(storms);
     let text = std::fs::read_to_string(&storms_path).map_err(|e| {
         AppError::from(invalid(
             file,
-            "study.storms",
+            &key,
             format!("a readable storm table ({}: {e})", storms_path.display()),
         ))
     })?;

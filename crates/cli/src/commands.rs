@@ -685,6 +685,20 @@ fn describe_scene(
     if let Some(sb) = &scene.model.seabed {
         factor *= sb.seabed.law.relative_cost();
         effects.push(sb.seabed.law.title().to_string());
+        if let catena_seabed::law::Law::RandolphQuiggin(rq) = &sb.seabed.law {
+            if let Some(d) = &rq.params().degradation {
+                effects.push(format!(
+                    "cyclic degradation (S_t {}, ξ95 {} D){}",
+                    d.sensitivity,
+                    d.ductility,
+                    if d.regain.is_some() {
+                        " with regain at rest"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+        }
         if sb.seabed.buoyancy.is_some() {
             effects.push("soil buoyancy".into());
         }
@@ -826,6 +840,46 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             "  estimated: {:.2} core-hours in all ({:.0} s a run on average)",
             per_run * runs.len() as f64 / 3600.0,
             per_run
+        );
+    } else if doc.contains_key("sequence") {
+        let seq = catena::sequence::Sequence::read(case)?;
+        let ids: Vec<String> = seq
+            .visits
+            .iter()
+            .map(|(v, _)| v.storm.id.to_string())
+            .collect();
+        let _ = writeln!(
+            t,
+            "{file}: a storm sequence of {} visits (storms {}), {:.1} % of the year's sea states covered, {} s of rest between visits{}",
+            seq.visits.len(),
+            ids.join(", "),
+            100.0 * seq.coverage,
+            seq.calm,
+            if seq.as_laid { "; each visit also from the as-laid state" } else { "" }
+        );
+        let mut sum = 0.0;
+        for (i, (_, sc)) in seq.visits.iter().enumerate() {
+            if i == 0 {
+                let _ = writeln!(t, "  each visit's scene (the first shown):");
+                sum += describe_scene(sc, &mut t, &mut warnings);
+            } else {
+                let mut scratch = String::new();
+                sum += describe_scene(sc, &mut scratch, &mut warnings);
+            }
+        }
+        // The calm scene moves nothing by design: its warnings are not the user's.
+        let (mut scratch, mut quiet) = (String::new(), Vec::new());
+        let calm = describe_scene(&seq.calm_scene, &mut scratch, &mut quiet);
+        let _ = writeln!(
+            t,
+            "  estimated: {:.0} s on one core for the sequence (its settling {:.0} s of it){}",
+            sum + calm * seq.visits.len() as f64,
+            calm * seq.visits.len() as f64,
+            if seq.as_laid {
+                format!(", {sum:.0} s more for the as-laid visits alongside")
+            } else {
+                String::new()
+            }
         );
     } else if doc.contains_key("study") && !doc.contains_key("fatigue") {
         let study = catena::strength::StrengthStudy::read(case)?;

@@ -433,6 +433,48 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "waypoints = [0.0, 1e300]",
         "test.waypoints[1]",
     ),
+    (
+        "degradation sensitivity below 1",
+        "scr1000/memory/scr1000-rq-degrading",
+        "sensitivity = 3.0",
+        "sensitivity = 0.5",
+        "seabed.degradation.sensitivity",
+    ),
+    (
+        "degradation ductility zero",
+        "scr1000/memory/scr1000-rq-degrading",
+        "ductility = 25.0",
+        "ductility = 0.0",
+        "seabed.degradation.ductility",
+    ),
+    (
+        "regain t50 without its exponent",
+        "scr1000/memory/scr1000-rq-degrading",
+        "regain_exponent = 1.0",
+        "",
+        "seabed.degradation.regain_exponent",
+    ),
+    (
+        "negative regain time",
+        "scr1000/memory/scr1000-rq-degrading",
+        "regain_t50 = 30000.0",
+        "regain_t50 = -3.0",
+        "seabed.degradation.regain_t50",
+    ),
+    (
+        "degradation on a linear seabed",
+        "scr1000/storm23",
+        "[hydrodynamics]",
+        "[seabed.degradation]\nsensitivity = 3.0\nductility = 10.0\n\n[hydrodynamics]",
+        "seabed.degradation",
+    ),
+    (
+        "negative calm interval",
+        "scr1000/memory/year-rq",
+        "calm = 1051920.0",
+        "calm = -1.0",
+        "sequence.calm",
+    ),
 ];
 
 #[test]

@@ -119,12 +119,13 @@ fn visits_carry_the_trench_and_the_soil_and_resume_to_the_bit() {
 }
 
 /// Bad sequence input: a storm not in the table, a negative calm, both an order and a random
-/// table: each error names the file and the key.
+/// table, a zero settling step, fewer random visits than storms, a missing scene: each error names
+/// the file and the key.
 #[test]
 fn bad_sequence_input_is_named() {
     let d = dir("bad");
     for (extra, order, key) in [
-        ("calm = 0.0", Some("[23, 99]"), "sequence.order[1]"),
+        ("calm = 0.0", Some("order = [23, 99]"), "sequence.order[1]"),
         ("calm = -5.0", None, "sequence.calm"),
         (
             "calm = 0.0\n[sequence.random]\nseed = 1\nvisits = 3",
@@ -136,12 +137,29 @@ fn bad_sequence_input_is_named() {
             None,
             "sequence.settle_time_step",
         ),
+        (
+            "calm = 0.0\n[sequence.random]\nseed = 1\nvisits = 12",
+            Some(""),
+            "sequence.random.visits",
+        ),
+        (
+            "calm = 0.0\nscene = \"missing.toml\"",
+            None,
+            "sequence.scene",
+        ),
     ] {
         let seq = short_sequence(&d, extra);
+        let mut text = std::fs::read_to_string(&seq).expect("read");
         if let Some(o) = order {
-            let text = std::fs::read_to_string(&seq).expect("read");
-            std::fs::write(&seq, text.replace("[23, 24, 23]", o)).expect("write");
+            text = text.replace("order = [23, 24, 23]", o);
         }
+        if extra.contains("scene = ") {
+            // The first `scene` key is the good one: drop it.
+            let first = text.find("scene = ").expect("scene");
+            let end = first + text[first..].find('\n').expect("line");
+            text.replace_range(first..=end, "");
+        }
+        std::fs::write(&seq, text).expect("write");
         let e = catena_cli::sequence::run(&seq, &d.join("out"), 1, false)
             .expect_err("bad input")
             .to_string();
