@@ -24,7 +24,7 @@ import numpy as np
 from ._catena import CatenaError, Scene, version
 from . import _catena
 
-__all__ = ["CatenaError", "Scene", "Results", "statics", "run", "fatigue_study", "sweep", "version"]
+__all__ = ["CatenaError", "Scene", "Results", "statics", "run", "fatigue_study", "sequence", "sweep", "version"]
 
 
 class Results(dict):
@@ -76,6 +76,16 @@ def fatigue_study(path, jobs: int = 0) -> Results:
     threads (0: every core). Arrays: ``arc``, ``damage_<fibre>`` (per year) and ``life_<fibre>``
     (years); ``summary["lives"]`` gives each fibre's minimum life and where."""
     return Results(_catena.fatigue_study(str(path), jobs))
+
+
+def sequence(path, jobs: int = 0) -> Results:
+    """Storms in sequence (a sequence file, ``docs/sequence.md``): each visit from the state the
+    last one left (the trench, the degraded soil), the as-laid visits alongside on the other
+    threads. Arrays: ``arc`` (m), ``trench`` (visits × nodes: penetration at rest after each visit,
+    m, positive down), ``as_laid_penetration`` (m), ``life_memory`` and ``life_as_laid`` (years,
+    the first fibre), ``strength`` (each node's strength factor after the last visit). In memory:
+    the command line (``catena sequence``) writes files and resumes."""
+    return Results(_catena.sequence(str(path), jobs))
 
 
 def sweep(path, jobs: int = 0) -> list:

@@ -165,3 +165,25 @@ def test_fatigue_study_and_sweep_equal_the_command_line(tmp_path):
             assert a[k] == b[k], k
     # A stiffer seabed shortens the life (Figure 9's trend).
     assert rows[1]["min_life_years"] < rows[0]["min_life_years"]
+
+
+def test_sequence_equals_the_command_line(tmp_path):
+    """Two short visits in sequence on the R–Q seabed: the Python sequence gives the command
+    line's lives and trench to the bit; the second visit starts from the first one's trench."""
+    for f in ["fatigue/scr1000-rq-fsuc0.2.toml", "fatigue/gom-30-storms.toml", "semi-rao.csv"]:
+        shutil.copy(ROOT / "cases" / "scr1000" / f, tmp_path / Path(f).name)
+    seq = tmp_path / "sequence.toml"
+    seq.write_text(
+        '[sequence]\nscene = "scr1000-rq-fsuc0.2.toml"\nstorms = "gom-30-storms.toml"\n'
+        "order = [23, 23]\nrecord = 20.0\ntransient = 20.0\ncalm = 0.0\nsettle = 20.0\n\n"
+        '[fatigue]\nsn_curve = "dnv-e-seawater-cp"\nscf = 1.2\nfibres = ["outer"]\n'
+    )
+    r = catena.sequence(seq, jobs=2)
+    cli("sequence", seq, "--out", tmp_path / "out")
+    s = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert r["life_memory"].min() == s["memory"]["minimum_life_years"]
+    assert r["life_as_laid"].min() == s["as_laid"]["minimum_life_years"]
+    trench = np.loadtxt(tmp_path / "out" / "trench.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(trench[:, 2:].T, r["trench"])
+    assert r["trench"].shape == (2, r["arc"].size)
+    assert r["trench"][1].max() > r["as_laid_penetration"].max()

@@ -86,9 +86,11 @@ fn chain(
                 r.wall_seconds,
                 deepest,
                 weakest,
-                r.error
-                    .as_ref()
-                    .map_or(String::new(), |e| format!(", STOPPED EARLY: {e}")),
+                match (&r.error, r.calm_retries) {
+                    (Some(e), _) => format!(", STOPPED EARLY: {e}"),
+                    (None, 0) => String::new(),
+                    (None, n) => format!(", the calm retried {n} time(s) at a smaller step"),
+                },
                 t0.elapsed().as_secs_f64()
             );
         }

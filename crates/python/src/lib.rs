@@ -377,6 +377,93 @@ fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<B
     Ok(out)
 }
 
+/// Storms in sequence (a sequence file: base scene, storm table, order or random order, calm,
+/// fatigue table), each visit from the state the last left, the as-laid visits alongside on the
+/// other threads: `{"arrays": {"arc", "trench" (visits × nodes, m), "as_laid_penetration" (m),
+/// "life_memory", "life_as_laid" (years, of the first fibre), "strength" (after the last visit)},
+/// "summary"}`. In memory: no files, no resume (the command line keeps both).
+#[pyfunction]
+#[pyo3(signature = (path, jobs = 0))]
+fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
+    use catena::sequence::{annual_damage, run_as_laid, run_visit, Sequence};
+    use rayon::prelude::*;
+    let seq = Sequence::read(&path).map_err(err)?;
+    let n = seq.visits.len();
+    let (memory, laid) = on_threads(py, jobs.max(2), || {
+        let ks: Vec<usize> = (0..n).collect();
+        let (memory, laid) = rayon::join(
+            || -> Result<Vec<_>, String> {
+                let mut out = Vec::new();
+                let mut carry = None;
+                for k in 0..n {
+                    let (r, next) = run_visit(&seq, k, carry.take()).map_err(|e| e.to_string())?;
+                    let stop = next.is_none();
+                    out.push(r);
+                    if stop {
+                        break;
+                    }
+                    carry = next;
+                }
+                Ok(out)
+            },
+            || -> Result<Vec<_>, String> {
+                if !seq.as_laid {
+                    return Ok(Vec::new());
+                }
+                ks.par_iter()
+                    .map(|&k| run_as_laid(&seq, k).map_err(|e| e.to_string()))
+                    .collect()
+            },
+        );
+        Ok((memory?, laid?))
+    })?;
+    let st = catena::statics::solve(seq.base.clone()).map_err(err)?;
+    let arc = st.model.arc.clone();
+    let fibre = memory
+        .first()
+        .and_then(|r| r.damage.first())
+        .map(|(f, _)| f.clone())
+        .unwrap_or_else(|| "outer".into());
+    let done = memory.iter().take_while(|r| r.error.is_none()).count();
+    let lives = |d: Vec<f64>| -> Vec<f64> { d.iter().map(|x| 1.0 / x).collect() };
+    let life_memory = lives(annual_damage(&memory[..done], &fibre));
+    let life_laid = lives(annual_damage(&laid[..done.min(laid.len())], &fibre));
+    let trench: Vec<f64> = memory[..done]
+        .iter()
+        .flat_map(|r| r.trench.iter().copied())
+        .collect();
+    let strength = memory[..done]
+        .last()
+        .map(|r| r.strength.clone())
+        .unwrap_or_default();
+    let out = PyDict::new(py);
+    let arrays = PyDict::new(py);
+    arrays.set_item("arc", array(py, &arc, vec![arc.len()]))?;
+    arrays.set_item("trench", array(py, &trench, vec![done, arc.len()]))?;
+    arrays.set_item(
+        "as_laid_penetration",
+        array(py, &st.results.penetration, vec![arc.len()]),
+    )?;
+    arrays.set_item(
+        "life_memory",
+        array(py, &life_memory, vec![life_memory.len()]),
+    )?;
+    arrays.set_item("life_as_laid", array(py, &life_laid, vec![life_laid.len()]))?;
+    arrays.set_item("strength", array(py, &strength, vec![strength.len()]))?;
+    out.set_item("arrays", arrays)?;
+    let visits: Vec<_> = memory
+        .iter()
+        .map(|r| {
+            serde_json::json!({"storm": r.visit.storm.id, "seed": r.visit.storm.seed,
+             "weight": r.visit.weight, "wall_seconds": r.wall_seconds, "stopped": r.error})
+        })
+        .collect();
+    let summary = serde_json::json!({"file": seq.file, "fibre": fibre, "visits": visits,
+        "visits_done": done, "coverage": seq.coverage, "calm_s": seq.calm});
+    out.set_item("summary", summary.to_string())?;
+    Ok(out)
+}
+
 /// A parameter sweep (a plan file), every run in parallel: the merged table as JSON text, one row
 /// per parameter point (`values`, `min_life_years`, `min_life_arc`, `tdz_moment_range`,
 /// `max_penetration`, `failed`).
@@ -432,6 +519,7 @@ fn _catena(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(fatigue_study, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     m.add("CatenaError", m.py().get_type::<CatenaError>())?;
     Ok(())
