@@ -469,6 +469,20 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "seabed.degradation",
     ),
     (
+        "a drained suction ratio above the undrained one",
+        "scr1000/memory/scr1000-rq-degrading",
+        "[seabed.degradation]          # Einav",
+        "[seabed.rate_suction]\ndrained_ratio = 0.5\ncv = 1e-7\nv50 = 10.0\nexponent = 1.0\n\n[seabed.degradation]          # Einav",
+        "seabed.rate_suction.drained_ratio",
+    ),
+    (
+        "a rate-dependent suction without its cv",
+        "scr1000/memory/scr1000-rq-degrading",
+        "[seabed.degradation]          # Einav",
+        "[seabed.rate_suction]\ndrained_ratio = 0.1\nv50 = 10.0\nexponent = 1.0\n\n[seabed.degradation]          # Einav",
+        "seabed.rate_suction.cv",
+    ),
+    (
         "negative calm interval",
         "scr1000/memory/year-rq",
         "calm = 1051920.0",

@@ -265,6 +265,7 @@ fn rq_far_field_embedment_is_the_laws_static_solution() {
         lambda_rep: 0.3,
         liftoff_smoothing: false,
         degradation: None,
+        rate_suction: None,
     };
     let seabed = Seabed {
         law: Law::RandolphQuiggin(RandolphQuiggin::new(p).expect("valid")),

@@ -209,7 +209,7 @@ impl Seabed {
                 }
             }
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
-                self.rq_response(rq, h, z, (memo, None))
+                self.rq_response(rq, h, (z, z_rate), (memo, None))
             }
             _ => self.evaluate_with(h, z, z_rate, dt, memo).response(),
         }
@@ -224,10 +224,10 @@ impl Seabed {
         &self,
         rq: &RandolphQuiggin,
         h: &RqHistory,
-        z: f64,
+        (z, z_rate): (f64, f64),
         (memo, next): (&mut TrialMemo, Option<&mut SeabedHistory>),
     ) -> SeabedResponse {
-        let t = rq.evaluate_with(h, z, &mut memo.onset);
+        let t = rq.evaluate_rate(h, z, z_rate, &mut memo.onset);
         if let Some(next) = next {
             *next = SeabedHistory::RandolphQuiggin(t.next);
         }
@@ -257,7 +257,7 @@ impl Seabed {
                 self.response(h, z, z_rate, dt, memo)
             }
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(hr)) => {
-                self.rq_response(rq, hr, z, (memo, Some(next)))
+                self.rq_response(rq, hr, (z, z_rate), (memo, Some(next)))
             }
             _ => {
                 let t = self.evaluate_with(h, z, z_rate, dt, memo);
@@ -283,10 +283,10 @@ impl Seabed {
         dt: f64,
         memo: &mut TrialMemo,
     ) -> SeabedTrial {
-        let _ = dt; // No law of catena's is rate-dependent beyond linear damping yet.
+        let _ = dt; // The laws' rates are their own (linear damping, R–Q rate-dependent suction).
         let (resistance, tangent, branch, next, damping, c) = match (&self.law, h) {
             (Law::RandolphQuiggin(rq), SeabedHistory::RandolphQuiggin(h)) => {
-                let t = rq.evaluate_with(h, z, &mut memo.onset);
+                let t = rq.evaluate_rate(h, z, z_rate, &mut memo.onset);
                 (
                     t.p,
                     t.tangent,

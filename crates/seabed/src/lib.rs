@@ -40,7 +40,7 @@ pub use buoyancy::SoilBuoyancy;
 pub use degradation::{Degradation, Regain, Wear};
 pub use law::{Seabed, SeabedHistory, SeabedResponse, SeabedTrial, TrialMemo};
 pub use linear::{LinearHistory, LinearSeabed};
-pub use rq::{Mode, OnsetMemo, RandolphQuiggin, RqHistory, RqParams, RqTrial};
+pub use rq::{Mode, OnsetMemo, RandolphQuiggin, RateSuction, RqHistory, RqParams, RqTrial};
 
 /// Standard gravity, m/s² (the value `cases.md` prescribes).
 pub const G: f64 = 9.80665;

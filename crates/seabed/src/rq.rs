@@ -74,6 +74,45 @@ pub struct RqParams {
     /// the paper's law.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub degradation: Option<Degradation>,
+    /// A suction ratio that depends on the uplift's rate ([`RateSuction`]); `None`: `f_suc` at
+    /// every rate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rate_suction: Option<RateSuction>,
+}
+
+/// A suction ratio that depends on the normalised uplift velocity `V = v·D/c_v`: the drainage
+/// backbone of penetrometer tests (House, Oliveira & Randolph 2001; Finnie & Randolph 1994) written
+/// for the suction ratio,
+///
+/// ```text
+/// f(V) = f_dr + (f_suc − f_dr) / (1 + (V50/V)^c),
+/// ```
+///
+/// drained (`f_dr`) when slow, undrained (the table's `f_suc`) when fast, half-way at `V50`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RateSuction {
+    /// The drained suction ratio `f_dr`, in [0, f_suc].
+    pub drained_ratio: f64,
+    /// The coefficient of consolidation `c_v`, m²/s.
+    pub cv: f64,
+    /// The normalised velocity `V50` at half-way, > 0.
+    pub v50: f64,
+    /// The backbone's exponent `c`, > 0.
+    pub exponent: f64,
+}
+
+impl RateSuction {
+    /// The suction ratio at an uplift velocity `v` (m/s, ≥ 0) for a pipe of diameter `d` whose
+    /// undrained ratio is `f_und`.
+    pub fn ratio(&self, v: f64, d: f64, f_und: f64) -> f64 {
+        let big_v = v * d / self.cv;
+        if big_v <= 0.0 {
+            return self.drained_ratio;
+        }
+        self.drained_ratio
+            + (f_und - self.drained_ratio) / (1.0 + (self.v50 / big_v).powf(self.exponent))
+    }
 }
 
 impl RqParams {
@@ -91,6 +130,7 @@ impl RqParams {
             lambda_rep: 0.2,
             liftoff_smoothing: false,
             degradation: None,
+            rate_suction: None,
         }
     }
 
@@ -108,6 +148,7 @@ impl RqParams {
             lambda_rep: 0.4,
             liftoff_smoothing: false,
             degradation: None,
+            rate_suction: None,
         }
     }
 
@@ -150,6 +191,32 @@ impl RqParams {
         )?;
         if let Some(d) = &self.degradation {
             d.validate()?;
+        }
+        if let Some(r) = &self.rate_suction {
+            check(
+                (0.0..=self.f_suc).contains(&r.drained_ratio),
+                "rate_suction.drained_ratio",
+                r.drained_ratio,
+                "a drained suction ratio in [0, f_suc]",
+            )?;
+            check(
+                r.cv > 0.0,
+                "rate_suction.cv",
+                r.cv,
+                "a coefficient of consolidation cv > 0 (m²/s)",
+            )?;
+            check(
+                r.v50 > 0.0,
+                "rate_suction.v50",
+                r.v50,
+                "a normalised velocity V50 > 0",
+            )?;
+            check(
+                r.exponent > 0.0,
+                "rate_suction.exponent",
+                r.exponent,
+                "a backbone exponent c > 0",
+            )?;
         }
         Ok(())
     }
@@ -245,6 +312,10 @@ pub struct RqHistory {
     /// The soil's degradation at the node ([`crate::degradation`]): intact without the option.
     #[serde(default)]
     pub wear: Wear,
+    /// The penetration rate `ż` at the last converged step, m/s (positive down); kept only with
+    /// rate-dependent suction (0 otherwise).
+    #[serde(default)]
+    pub rate: f64,
 }
 
 /// The last [`RandolphQuiggin::suction_onset`] a node's trials computed and the committed
@@ -254,7 +325,7 @@ pub struct RqHistory {
 /// Scratch of the caller's (one per node), never part of the history.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct OnsetMemo {
-    last: Option<((u64, u64), Option<f64>)>,
+    last: Option<([u64; 5], Option<f64>)>,
 }
 
 /// What a trial at `z` knows of its uplift's suction onset.
@@ -285,7 +356,15 @@ impl OnsetMemo {
     /// The onset as far as a trial at `z` needs it ([`RandolphQuiggin::scan_onset`]), from the
     /// memo when it holds that pair; an onset found is kept.
     fn onset_at(&mut self, law: &RandolphQuiggin, z0: f64, p0: f64, z: f64) -> Onset {
-        let key = (z0.to_bits(), p0.to_bits());
+        // The law's strength and suction ratio are part of the key: with degradation or
+        // rate-dependent suction the same episode start can meet another law.
+        let key = [
+            z0.to_bits(),
+            p0.to_bits(),
+            law.p.f_suc.to_bits(),
+            law.p.su0.to_bits(),
+            law.p.su_gradient.to_bits(),
+        ];
         match self.last {
             Some((k, z_c)) if k == key => Onset::Known(z_c),
             _ => {
@@ -315,6 +394,7 @@ impl RqHistory {
             z_p0: 0.0,
             contacted: false,
             wear: Wear::default(),
+            rate: 0.0,
         }
     }
 }
@@ -443,6 +523,7 @@ impl RandolphQuiggin {
                 z_p0: 0.0,
                 contacted: true,
                 wear: Wear::default(),
+                rate: 0.0,
             }
         } else {
             RqHistory::untouched(z_s)
@@ -656,6 +737,46 @@ impl RandolphQuiggin {
     /// [`RandolphQuiggin::evaluate`], taking the suction onset from `memo` when it holds the one
     /// this history needs (the same values to the bit).
     pub fn evaluate_with(&self, h: &RqHistory, z: f64, memo: &mut OnsetMemo) -> RqTrial {
+        self.evaluate_rate(h, z, 0.0, memo)
+    }
+
+    /// A trial at penetration `z` moving at `z_rate` (m/s, positive down) from the committed
+    /// history: with rate-dependent suction ([`RateSuction`]) the step's suction ratio is that of
+    /// the committed uplift velocity (`max(−ż_prev, 0)`: explicit, so that a step's trials share
+    /// one law and its tangent is the law's), the episode's suction onset found again for it, and
+    /// `z_rate` kept in the next history; without it, `z_rate` is not used.
+    pub fn evaluate_rate(
+        &self,
+        h: &RqHistory,
+        z: f64,
+        z_rate: f64,
+        memo: &mut OnsetMemo,
+    ) -> RqTrial {
+        let Some(rs) = &self.p.rate_suction else {
+            return self.evaluate_soil(h, z, memo);
+        };
+        let f = rs.ratio((-h.rate).max(0.0), self.p.diameter, self.p.f_suc);
+        let law = Self {
+            p: RqParams { f_suc: f, ..self.p },
+            ..*self
+        };
+        // The onset depends on the ratio: an uplift finds it again for this step's.
+        let h2 = if h.mode == Mode::Uplift {
+            RqHistory {
+                z_c: None,
+                z_c_pending: true,
+                ..*h
+            }
+        } else {
+            *h
+        };
+        let mut t = law.evaluate_soil(&h2, z, memo);
+        t.next.rate = z_rate;
+        t
+    }
+
+    /// The law on the soil as it is: degraded or intact.
+    fn evaluate_soil(&self, h: &RqHistory, z: f64, memo: &mut OnsetMemo) -> RqTrial {
         match &self.p.degradation {
             None => self.evaluate_intact(h, z, memo),
             Some(d) => self.evaluate_degrading(d, h, z, memo),
@@ -799,6 +920,7 @@ impl RandolphQuiggin {
                 z_p0,
                 contacted: h.contacted,
                 wear: h.wear,
+                rate: h.rate,
             },
         }
     }
@@ -822,6 +944,7 @@ impl RandolphQuiggin {
                 z_p0: h.z_p0,
                 contacted: true,
                 wear: h.wear,
+                rate: h.rate,
             },
         }
     }
@@ -850,6 +973,7 @@ impl RandolphQuiggin {
                 z_p0,
                 contacted: true,
                 wear: h.wear,
+                rate: h.rate,
             },
         }
     }
@@ -873,6 +997,7 @@ impl RandolphQuiggin {
                 z_p0: h.z_p0,
                 contacted: true,
                 wear: h.wear,
+                rate: h.rate,
             },
         }
     }

@@ -33,6 +33,7 @@ fn params() -> impl Strategy<Value = RqParams> {
                 lambda_rep,
                 liftoff_smoothing: smooth,
                 degradation: None,
+                rate_suction: None,
             },
         )
 }

@@ -18,11 +18,13 @@
 //! | `profile` | [[m, m], …] | flat at z = 0 | the mudline's height `[x, z]` along the route, piecewise linear, constant beyond the ends (riser scenes) |
 //! | `[[seabed.zone]]` `from_x`, `to_x` and any law key | m, m, … | none | a stretch of the route `[from_x, to_x)` (riser scenes) whose law keys override the table's; zones may not overlap |
 //! | `[seabed.degradation]` `sensitivity`, `ductility`, `regain_t50`, `regain_exponent` | —, D, s, — | none | cyclic strength degradation (R–Q): sensitivity S_t ≥ 1, ductility ξ95 > 0 in pipe diameters of accumulated plastic displacement; regain at rest (both or neither): t50 > 0, m > 0 |
+//! | `[seabed.rate_suction]` `drained_ratio`, `cv`, `v50`, `exponent` | —, m²/s, —, — | none | a suction ratio that depends on the uplift velocity (R–Q): `f(V) = f_dr + (f_suc − f_dr)/(1 + (V50/V)^c)`, `V = v·D/cv` |
 //! | `[seabed.friction]` `axial`, `mobilisation` | —, m | none | axial friction (riser scenes, dynamics only): Coulomb μ on the normal seabed force, and the displacement δ > 0 that mobilises it |
 
 use catena_seabed::law::{Law, Seabed};
 use catena_seabed::{
-    Degradation, LinearSeabed, ParamError, RandolphQuiggin, Regain, RqParams, SoilBuoyancy,
+    Degradation, LinearSeabed, ParamError, RandolphQuiggin, RateSuction, Regain, RqParams,
+    SoilBuoyancy,
 };
 use serde::Deserialize;
 
@@ -62,6 +64,7 @@ pub struct SeabedTable {
     pub water_density: Option<f64>,
     pub friction: Option<FrictionTable>,
     pub degradation: Option<DegradationTable>,
+    pub rate_suction: Option<RateSuctionTable>,
     #[serde(default)]
     pub zone: Vec<ZoneTable>,
     pub profile: Option<Vec<Vec<f64>>>,
@@ -137,6 +140,49 @@ impl DegradationTable {
             sensitivity,
             ductility,
             regain,
+        })
+    }
+}
+
+/// `[seabed.rate_suction]` as written (Randolph–Quiggin only): every key required.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct RateSuctionTable {
+    pub drained_ratio: Option<f64>,
+    pub cv: Option<f64>,
+    pub v50: Option<f64>,
+    pub exponent: Option<f64>,
+}
+
+impl RateSuctionTable {
+    fn build(&self, file: &str, table: &str) -> Result<RateSuction, SceneError> {
+        let key = |k: &str| format!("{table}.rate_suction.{k}");
+        Ok(RateSuction {
+            drained_ratio: required(
+                file,
+                &key("drained_ratio"),
+                self.drained_ratio,
+                "the drained suction ratio in [0, f_suc]",
+            )?,
+            cv: required(
+                file,
+                &key("cv"),
+                self.cv,
+                "the coefficient of consolidation cv in m²/s",
+            )?,
+            v50: required(
+                file,
+                &key("v50"),
+                self.v50,
+                "the normalised velocity V50 = v·D/cv at half-way",
+            )?,
+            exponent: required(
+                file,
+                &key("exponent"),
+                self.exponent,
+                "the backbone's exponent c > 0",
+            )?,
         })
     }
 }
@@ -384,6 +430,10 @@ impl SeabedTable {
                     lambda_rep: get("lambda_rep", self.lambda_rep, "the repenetration offset")?,
                     liftoff_smoothing: self.liftoff_smoothing.unwrap_or(false),
                     degradation: self.degradation.map(|d| d.build(file, table)).transpose()?,
+                    rate_suction: self
+                        .rate_suction
+                        .map(|r| r.build(file, table))
+                        .transpose()?,
                 };
                 Law::RandolphQuiggin(
                     RandolphQuiggin::new(p).map_err(|e| param_error(file, table, e))?,
