@@ -271,6 +271,7 @@ pub struct Calibration {
     pub evaluations: u64,
 }
 
+#[derive(Clone, Copy)]
 struct Misfit<'a> {
     data: &'a TestData,
     start: RqParams,
@@ -386,21 +387,13 @@ pub fn calibrate(
                 file: data.file.clone(),
                 message: format!("the optimiser: {e}"),
             })?;
-        let res = Executor::new(
-            Misfit {
-                data,
-                start,
-                keys: fit,
-                evaluations: &counter,
-            },
-            solver,
-        )
-        .configure(|s| s.max_iters(400 * fit.len() as u64))
-        .run()
-        .map_err(|e| AppError::Run {
-            file: data.file.clone(),
-            message: format!("the optimiser: {e}"),
-        })?;
+        let res = Executor::new(cost, solver)
+            .configure(|s| s.max_iters(400 * fit.len() as u64))
+            .run()
+            .map_err(|e| AppError::Run {
+                file: data.file.clone(),
+                message: format!("the optimiser: {e}"),
+            })?;
         if let Some(p) = res.state().get_best_param() {
             best = p.clone();
         }

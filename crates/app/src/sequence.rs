@@ -71,7 +71,10 @@ use crate::run::{self, RunOptions};
 use crate::scene::edit::Edit;
 use crate::scene::riser::RiserScene;
 use crate::scene::{invalid, parse, DirResolver};
-use crate::study::{check_sea, read_base_as, read_storm_table_as, Sea, Storm, StormsFile, YEAR};
+use crate::study::{
+    check_sea, damage_of, read_base_as, read_storm_table_as, weighted_damage, Sea, Storm,
+    StormsFile, YEAR,
+};
 
 /// `[sequence.random]`.
 #[derive(Debug, Clone, Deserialize)]
@@ -456,18 +459,6 @@ impl Sequence {
     }
 }
 
-fn damage_of(r: &run::DynamicRun, scene: &RiserScene) -> Result<Vec<(String, Vec<f64>)>, AppError> {
-    let f = r.fatigue.as_ref().ok_or_else(|| AppError::Run {
-        file: scene.file.clone(),
-        message: "the visit's scene has no [fatigue] table".into(),
-    })?;
-    Ok(f.spec
-        .fibres
-        .iter()
-        .filter_map(|fib| f.damage_of(*fib).map(|d| (fib.name().to_string(), d)))
-        .collect())
-}
-
 /// Runs visit `k` from `start` (the as-laid statics when `None`): the storm, then the calm (the
 /// line brought to rest, each node's history rested for `calm` seconds). Returns the result and
 /// what it leaves for the next visit (`None` if the storm stopped early).
@@ -596,21 +587,17 @@ pub fn run_as_laid(seq: &Sequence, k: usize) -> Result<VisitResult, AppError> {
 /// The annual damage along the arc for one fibre over visits `results`:
 /// `D = Σ p_i·D_v·Y/(n_i·T_v)` (visits that stopped early are left out).
 pub fn annual_damage(results: &[VisitResult], fibre: &str) -> Vec<f64> {
-    let mut total: Vec<f64> = Vec::new();
-    for r in results
-        .iter()
-        .filter(|r| r.error.is_none() && r.counted_seconds > 0.0)
-    {
-        if let Some((_, d)) = r.damage.iter().find(|(n, _)| n == fibre) {
-            if total.is_empty() {
-                total = vec![0.0; d.len()];
-            }
-            let w = r.visit.storm.probability * YEAR
-                / (r.visit.visits_of_storm as f64 * r.counted_seconds);
-            for (t, x) in total.iter_mut().zip(d) {
-                *t += w * x;
-            }
-        }
-    }
-    total
+    weighted_damage(
+        results
+            .iter()
+            .filter(|r| r.error.is_none() && r.counted_seconds > 0.0)
+            .map(|r| {
+                (
+                    r.damage.as_slice(),
+                    r.visit.storm.probability * YEAR
+                        / (r.visit.visits_of_storm as f64 * r.counted_seconds),
+                )
+            }),
+        fibre,
+    )
 }

@@ -322,38 +322,61 @@ pub fn run_storm(storm: &Storm, scene: &RiserScene) -> Result<StormResult, AppEr
     let t0 = std::time::Instant::now();
     let hash = crate::scene::text_hash(&scene.text);
     let r = run::simulate(scene.clone(), &mut [], RunOptions::default())?;
-    let f = r.fatigue.as_ref().ok_or_else(|| AppError::Run {
-        file: scene.file.clone(),
-        message: "the storm's scene has no [fatigue] table".into(),
-    })?;
-    let damage = f
-        .spec
-        .fibres
-        .iter()
-        .filter_map(|fib| f.damage_of(*fib).map(|d| (fib.name().to_string(), d)))
-        .collect();
+    let damage = damage_of(&r, scene)?;
     Ok(StormResult {
         storm: storm.clone(),
         scene_hash: hash,
-        counted_seconds: f.counted_seconds(),
+        counted_seconds: r.fatigue.as_ref().map_or(0.0, |f| f.counted_seconds()),
         damage,
         wall_seconds: t0.elapsed().as_secs_f64(),
         error: r.stop.as_ref().map(ToString::to_string),
     })
 }
 
+/// A run's damage per fibre over its counted record (an error if its scene has no `[fatigue]`).
+pub(crate) fn damage_of(
+    r: &run::DynamicRun,
+    scene: &RiserScene,
+) -> Result<Vec<(String, Vec<f64>)>, AppError> {
+    let f = r.fatigue.as_ref().ok_or_else(|| AppError::Run {
+        file: scene.file.clone(),
+        message: "the run's scene has no [fatigue] table".into(),
+    })?;
+    Ok(f.spec
+        .fibres
+        .iter()
+        .filter_map(|fib| f.damage_of(*fib).map(|d| (fib.name().to_string(), d)))
+        .collect())
+}
+
 /// Annual damage along the arc for one fibre: `D = Σ p_i D_i Y/T_i` over the storms that completed.
 pub fn annual_damage(results: &[StormResult], fibre: &str) -> Vec<f64> {
+    weighted_damage(
+        results
+            .iter()
+            .filter(|r| r.error.is_none() && r.counted_seconds > 0.0)
+            .map(|r| {
+                (
+                    r.damage.as_slice(),
+                    r.storm.probability * YEAR / r.counted_seconds,
+                )
+            }),
+        fibre,
+    )
+}
+
+/// `Σ w·D` along the arc for one fibre over `(damage per fibre, weight)` pairs (a pair without the
+/// fibre adds nothing): the sum behind a study's and a sequence's annual damage.
+pub(crate) fn weighted_damage<'a>(
+    items: impl Iterator<Item = (&'a [(String, Vec<f64>)], f64)>,
+    fibre: &str,
+) -> Vec<f64> {
     let mut total: Vec<f64> = Vec::new();
-    for r in results
-        .iter()
-        .filter(|r| r.error.is_none() && r.counted_seconds > 0.0)
-    {
-        if let Some((_, d)) = r.damage.iter().find(|(n, _)| n == fibre) {
+    for (damage, w) in items {
+        if let Some((_, d)) = damage.iter().find(|(n, _)| n == fibre) {
             if total.is_empty() {
                 total = vec![0.0; d.len()];
             }
-            let w = r.storm.probability * YEAR / r.counted_seconds;
             for (t, x) in total.iter_mut().zip(d) {
                 *t += w * x;
             }
