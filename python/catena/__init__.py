@@ -15,16 +15,27 @@ arc length from the top (m), negative moment = sag (N*m), penetration of the inv
 Errors are :class:`CatenaError`, with the command line's messages (file, key, what was expected).
 """
 
-from __future__ import annotations
+import json as _json
 
-import json
-
-import numpy as np
+import numpy as _np
 
 from ._catena import CatenaError, Scene, version
-from . import _catena
+from . import _catena, _tasks
+from ._tasks import TasksFailed
 
-__all__ = ["CatenaError", "Scene", "Results", "statics", "run", "fatigue_study", "sequence", "sweep", "version"]
+__all__ = [
+    "CatenaError",
+    "TasksFailed",
+    "Scene",
+    "Results",
+    "statics",
+    "run",
+    "fatigue_study",
+    "sweep",
+    "sequence",
+    "animate",
+    "version",
+]
 
 
 class Results(dict):
@@ -33,16 +44,16 @@ class Results(dict):
     def __init__(self, raw):
         super().__init__()
         for name, (data, shape) in raw["arrays"].items():
-            self[name] = np.frombuffer(data, dtype="<f8").reshape(shape)
-        self.summary = json.loads(raw["summary"])
+            self[name] = _np.frombuffer(data, dtype="<f8").reshape(shape)
+        self.summary = _json.loads(raw["summary"])
 
     def at_arc(self, name, s):
         """A field's history (records) or profile, linearly interpolated at arc length ``s`` (m)."""
         arc = self["arc"]
         v = self[name]
         if v.ndim == 1:
-            return np.interp(s, arc, v)
-        return np.array([np.interp(s, arc, row) for row in v])
+            return _np.interp(s, arc, v)
+        return _np.array([_np.interp(s, arc, row) for row in v])
 
     def __repr__(self):
         names = ", ".join(sorted(self))
@@ -56,39 +67,117 @@ def _scene(scene):
 
 
 def statics(scene) -> Results:
-    """The static solution of a scene (a :class:`Scene` or a case file's path)."""
+    """The static solution of a scene (a :class:`Scene` or a case file's path).
+
+    Arrays along the arc (one value per node): ``arc`` (m from the top), ``x``, ``z`` (m),
+    ``theta`` (rad), ``effective_tension`` (N), ``bending_moment`` (N*m, negative in a sag bend),
+    ``penetration`` (m, of the invert, positive down), ``seabed_force`` (N/m). ``summary``:
+    ``top_tension``, ``horizontal_tension`` (N), ``touchdown_arc`` (m), ``max_sag_moment`` (N*m)
+    and where (m), ``top_angle_from_vertical`` (deg), ``newton_iterations``, ``wall_seconds``.
+    """
     return Results(_catena.statics(_scene(scene)))
 
 
 def run(scene, progress=None, every: int = 100) -> Results:
-    """Statics, then the dynamics of a scene.
+    """Statics, then the dynamics of a scene (a :class:`Scene` or a case file's path).
 
-    ``progress(t, duration)`` is called every ``every`` steps; Ctrl-C stops the run and raises
-    ``KeyboardInterrupt``. A run that stops early (a step that does not converge) still returns
-    everything up to its last converged step: see ``summary["completed"]`` and
-    ``summary["stop_reason"]``.
+    Arrays: the records of ``results.h5``'s ``/dynamic`` (``time`` in s; ``top_x``, ``top_z`` in m;
+    ``top_tension`` in N; ``touchdown_arc`` in m; fields of shape (records, nodes): ``x``, ``z``,
+    ``penetration`` (m), ``effective_tension`` (N), ``bending_moment`` (N*m), ``seabed_force``
+    (N/m)), the range graphs ``ranges/<quantity>/{min,max,mean}`` from ``envelope_start``, each
+    gauge's ``gauges/<name>/bending_moment`` and ``effective_tension`` at every step, and with a
+    ``[fatigue]`` table ``fatigue/damage_<fibre>`` (over the counted record).
+
+    The interpreter lock is released while catena steps, so runs in several threads run in
+    parallel. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
+    times a second, and at the last step; Ctrl-C stops the run and raises ``KeyboardInterrupt``. A
+    run that stops early (a step that does not converge) still returns everything up to its last
+    converged step: see ``summary["completed"]`` and ``summary["stop_reason"]``.
     """
     return Results(_catena.run(_scene(scene), progress, every))
 
 
-def fatigue_study(path, jobs: int = 0) -> Results:
-    """A fatigue study file (storm table and fatigue table), the storms run in parallel on ``jobs``
-    threads (0: every core). Arrays: ``arc``, ``damage_<fibre>`` (per year) and ``life_<fibre>``
-    (years); ``summary["lives"]`` gives each fibre's minimum life and where."""
+def fatigue_study(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
+    """A fatigue study file (storm table and fatigue table, ``docs/study.md``).
+
+    Without ``executor`` the storms run in parallel on ``jobs`` threads (0: every core). With one
+    (a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``) each storm is a task on
+    it, and the result is the same to the bit; ``checkpoint=DIR`` keeps each finished storm so that
+    a second call after a failure (:class:`TasksFailed`) runs only the rest.
+
+    Arrays: ``arc`` (m), ``damage_<fibre>`` (per year) and ``life_<fibre>`` (years) along the arc;
+    ``summary["lives"]`` gives each fibre's minimum life (years) and where (m), and
+    ``summary["storms"]`` each storm's wall time (s) and whether it stopped.
+    """
+    if executor is not None:
+        return Results(_tasks.fatigue_study(path, executor, checkpoint))
     return Results(_catena.fatigue_study(str(path), jobs))
 
 
-def sequence(path, jobs: int = 0) -> Results:
+def sequence(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
     """Storms in sequence (a sequence file, ``docs/sequence.md``): each visit from the state the
-    last one left (the trench, the degraded soil), the as-laid visits alongside on the other
-    threads. Arrays: ``arc`` (m), ``trench`` (visits × nodes: penetration at rest after each visit,
-    m, positive down), ``as_laid_penetration`` (m), ``life_memory`` and ``life_as_laid`` (years,
-    the first fibre), ``strength`` (each node's strength factor after the last visit). In memory:
-    the command line (``catena sequence``) writes files and resumes."""
+    last one left (the trench, the degraded soil), the as-laid visits alongside.
+
+    Without ``executor`` on ``jobs`` threads (at least 2: the chain and the as-laid visits). With
+    one (``concurrent.futures`` or a Dask client) each visit is a task: the visits with memory a
+    chain, each sent when the one before has finished with the state it left, the as-laid visits
+    independent; ``checkpoint=DIR`` keeps finished visits (and the state after each) for a second
+    call.
+
+    Arrays: ``arc`` (m), ``trench`` (visits x nodes: penetration at rest after each visit, m,
+    positive down), ``as_laid_penetration`` (m), ``life_memory`` and ``life_as_laid`` (years, the
+    first fibre), ``strength`` (each node's strength factor after the last visit, 1 intact). In
+    memory: the command line (``catena sequence``) writes files and resumes.
+    """
+    if executor is not None:
+        return Results(_tasks.sequence(path, executor, checkpoint))
     return Results(_catena.sequence(str(path), jobs))
 
 
-def sweep(path, jobs: int = 0) -> list:
-    """A sweep plan, every run in parallel: one dict per parameter point (``values``,
-    ``min_life_years``, ``min_life_arc``, ``tdz_moment_range``, ``max_penetration``, ``failed``)."""
-    return json.loads(_catena.sweep(str(path), jobs))
+def sweep(path, jobs: int = 0, executor=None, checkpoint=None) -> list:
+    """A sweep plan (``docs/sweep.md``): one dict per parameter point, with ``values`` (the
+    point's keys and values), ``min_life_years`` (years), ``min_life_arc`` (m),
+    ``tdz_moment_range`` (N*m), ``max_penetration`` (m) and ``failed`` (why, or ``None``).
+
+    Without ``executor`` every run in parallel on ``jobs`` threads (0: every core); with one
+    (``concurrent.futures`` or a Dask client) each run (a point, or a point's storm for a study
+    base) is a task, with the same result to the bit; ``checkpoint=DIR`` as for
+    :func:`fatigue_study`.
+    """
+    if executor is not None:
+        return _json.loads(_tasks.sweep(path, executor, checkpoint))
+    return _json.loads(_catena.sweep(str(path), jobs))
+
+
+def animate(results, out, frames: int = 120, fps: float = 12.0, colour: str = "penetration") -> dict:
+    """An animated GIF of the touchdown zone from a run's ``results.h5`` (the command line's
+    ``catena animate``): the whole line, the touchdown zone drawn to a true vertical scale with the
+    seabed and the trench as it forms, nodes coloured by ``colour`` (``"penetration"``, m, or
+    ``"seabed_force"``, N/m), the bending moment along the arc beneath (N*m), time and top motion.
+
+    ``results`` is the path of a ``results.h5`` or a :class:`Results` of :func:`run`; at most
+    ``frames`` frames, chosen evenly from the records, at ``fps`` frames a second. Returns
+    ``{"frames", "bytes", "seconds"}``.
+    """
+    if isinstance(results, Results):
+        arrays = results
+    else:
+        try:
+            import h5py
+        except ImportError as e:
+            raise CatenaError(
+                "animate: reading a results.h5 needs h5py (pip install h5py); or pass the "
+                "Results of catena.run"
+            ) from e
+        with h5py.File(results, "r") as f:
+            d = f["dynamic"]
+            arrays = {name: d[name][...] for name in
+                      ["arc", "time", "x", "z", "penetration", "seabed_force", "bending_moment",
+                       "top_x", "top_z"]}
+            text, case = (f.attrs[k] for k in ["scene", "case"])
+            text, case = (v.decode() if isinstance(v, bytes) else str(v) for v in (text, case))
+            arrays["outer_diameter"] = _np.array(
+                _catena.node_diameters(text, case, arrays["arc"].size))
+    raw = {k: (_np.ascontiguousarray(v, dtype="<f8").tobytes(), list(_np.shape(v)))
+           for k, v in arrays.items() if isinstance(v, _np.ndarray)}
+    return _json.loads(_catena.animate_arrays(raw, str(out), int(frames), float(fps), colour))

@@ -226,6 +226,25 @@ enum Command {
         #[arg(long, default_value_t = 600.0)]
         block: f64,
     },
+    /// An animated GIF of the touchdown zone from a run's results.h5: the whole line, the touchdown
+    /// zone to a true vertical scale with the seabed and the trench as it forms (nodes coloured by
+    /// penetration or seabed force), the bending moment along the arc, time and top motion.
+    Animate {
+        /// The results file (results.h5 of `catena run`).
+        results: PathBuf,
+        /// The GIF to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// The most frames, chosen evenly from the records.
+        #[arg(long, default_value_t = 120)]
+        frames: usize,
+        /// Frames a second.
+        #[arg(long, default_value_t = 12.0)]
+        fps: f64,
+        /// What colours the nodes: penetration (m) or seabed-force (N/m).
+        #[arg(long, default_value = "penetration")]
+        colour: String,
+    },
     /// Reads and checks a scene, a fatigue study, a sweep plan or a soil test without running it:
     /// prints what would run (the effects built, elements, steps, estimated time, memory and disk)
     /// and every warning. Exits with 2 and the error if the file is wrong.
@@ -366,6 +385,13 @@ fn main() -> ExitCode {
             scf,
         } => commands::rainflow(&series, &out, column.as_deref(), sn.as_deref(), scf)
             .map(|t| print!("{t}")),
+        Command::Animate {
+            results,
+            out,
+            frames,
+            fps,
+            colour,
+        } => commands::animate(&results, &out, frames, fps, &colour).map(|t| print!("{t}")),
         Command::Extremes {
             input,
             out,

@@ -1191,3 +1191,54 @@ pub fn read_extreme_channels(
     }
     Ok((time, out))
 }
+
+/// A run's records for the animation ([`crate::animate`]): `/dynamic`'s fields and each node's
+/// outer diameter, from the scene the file carries ([`crate::animate::diameters`]).
+pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> {
+    let err = h5err(path);
+    let file = hdf5::File::open(path).map_err(&err)?;
+    let bad = |m: String| AppError::Run {
+        file: path.display().to_string(),
+        message: m,
+    };
+    if !file.link_exists("dynamic") {
+        return Err(bad(
+            "no /dynamic group: a dynamic run's results.h5 is needed (`catena run` with a \
+             [dynamic] table)"
+                .into(),
+        ));
+    }
+    let read = |name: &str| -> Result<Vec<f64>, AppError> {
+        file.dataset(name)
+            .and_then(|d| d.read_raw::<f64>())
+            .map_err(&err)
+    };
+    let scene: VarLenUnicode = file
+        .attr("scene")
+        .and_then(|a| a.read_scalar())
+        .map_err(&err)?;
+    let case: VarLenUnicode = file
+        .attr("case")
+        .and_then(|a| a.read_scalar())
+        .map_err(&err)?;
+    let arc = read("dynamic/arc")?;
+    let n = arc.len();
+    let od = crate::animate::diameters(scene.as_str(), case.as_str(), n).ok_or_else(|| {
+        bad(
+            "the scene in the `scene` attribute gives no pipe diameter (line.od or line types)"
+                .into(),
+        )
+    })?;
+    Ok(crate::animate::Records {
+        time: read("dynamic/time")?,
+        x: read("dynamic/x")?,
+        z: read("dynamic/z")?,
+        penetration: read("dynamic/penetration")?,
+        seabed_force: read("dynamic/seabed_force")?,
+        bending_moment: read("dynamic/bending_moment")?,
+        top_x: read("dynamic/top_x")?,
+        top_z: read("dynamic/top_z")?,
+        od,
+        arc,
+    })
+}

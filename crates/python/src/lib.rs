@@ -169,15 +169,20 @@ fn statics<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>
     Ok(out)
 }
 
-/// Calls a Python progress function every `every` steps, and stops the run on Ctrl-C.
-struct Progress<'py> {
-    py: Python<'py>,
-    callback: Option<Bound<'py, PyAny>>,
+/// Calls a Python progress function every `every` steps, at most [`PROGRESS_PERIOD`] apart, and
+/// stops the run on Ctrl-C. It runs with the interpreter released and takes it only for that call
+/// (a few times a second at most), so other Python threads run while catena steps.
+struct Progress {
+    callback: Option<Py<PyAny>>,
     every: u64,
+    last: Option<std::time::Instant>,
     error: Option<PyErr>,
 }
 
-impl Observer for Progress<'_> {
+/// The shortest interval between two calls of a progress function (and two Ctrl-C checks).
+const PROGRESS_PERIOD: std::time::Duration = std::time::Duration::from_millis(200);
+
+impl Observer for Progress {
     fn name(&self) -> &'static str {
         "python-progress"
     }
@@ -187,18 +192,29 @@ impl Observer for Progress<'_> {
         ctx: &RunContext<'_>,
         s: &StepView<'_>,
     ) -> Result<Control, catena::error::AppError> {
-        if s.step % self.every != 0 {
+        let last_step = s.t >= ctx.spec.duration - 0.5 * ctx.spec.dt;
+        if s.step % self.every != 0 && !last_step {
             return Ok(Control::Continue);
         }
-        if let Err(e) = self.py.check_signals() {
-            self.error = Some(e);
-            return Ok(Control::Stop("interrupted from Python".into()));
+        let now = std::time::Instant::now();
+        if !last_step && self.last.is_some_and(|l| now - l < PROGRESS_PERIOD) {
+            return Ok(Control::Continue);
         }
-        if let Some(cb) = &self.callback {
-            if let Err(e) = cb.call1((s.t, ctx.spec.duration)) {
-                self.error = Some(e);
-                return Ok(Control::Stop("the progress function raised".into()));
+        self.last = Some(now);
+        let stop = Python::attach(|py| {
+            if let Err(e) = py.check_signals() {
+                return Some((e, "interrupted from Python"));
             }
+            if let Some(cb) = &self.callback {
+                if let Err(e) = cb.call1(py, (s.t, ctx.spec.duration)) {
+                    return Some((e, "the progress function raised"));
+                }
+            }
+            None
+        });
+        if let Some((e, why)) = stop {
+            self.error = Some(e);
+            return Ok(Control::Stop(why.into()));
         }
         Ok(Control::Continue)
     }
@@ -206,27 +222,30 @@ impl Observer for Progress<'_> {
 
 /// A dynamic run (statics first): `{"arrays": …, "summary": json}`. The arrays are the
 /// `results.h5` `/dynamic` series and fields (one row per record), the envelopes (`*_min`,
-/// `*_max`, from `envelope_start`) and each gauge's moment and tension at every step.
+/// `*_max`, from `envelope_start`) and each gauge's moment and tension at every step. The
+/// interpreter is released while catena steps.
 #[pyfunction]
 #[pyo3(signature = (scene, progress = None, every = 100))]
 fn run<'py>(
     py: Python<'py>,
     scene: &PyScene,
-    progress: Option<Bound<'py, PyAny>>,
+    progress: Option<Py<PyAny>>,
     every: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut records = Records::new();
     let mut prog = Progress {
-        py,
         callback: progress,
         every: every.max(1),
+        last: None,
         error: None,
     };
-    let r = {
-        let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
-        catena::run::simulate(scene.scene.clone(), &mut extra, RunOptions::default())
-            .map_err(err)?
-    };
+    let input = scene.scene.clone();
+    let r = py
+        .detach(|| {
+            let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
+            catena::run::simulate(input, &mut extra, RunOptions::default())
+        })
+        .map_err(err)?;
     if let Some(e) = prog.error.take() {
         return Err(e);
     }
@@ -236,6 +255,10 @@ fn run<'py>(
     arrays.set_item(
         "arc",
         array(py, &r.model.line.arc, vec![r.model.line.arc.len()]),
+    )?;
+    arrays.set_item(
+        "outer_diameter",
+        array(py, &r.model.line.node_od, vec![r.model.line.node_od.len()]),
     )?;
     for (name, v) in &records.series {
         arrays.set_item(*name, array(py, v, vec![nr]))?;
@@ -316,6 +339,28 @@ fn on_threads<T: Send>(
     py.detach(|| pool.install(f)).map_err(err)
 }
 
+/// A result or a carry as JSON text (exact: serde_json round-trips every f64).
+fn to_json<T: serde::Serialize>(v: &T) -> PyResult<String> {
+    serde_json::to_string(v).map_err(err)
+}
+
+/// A task's JSON text back (`what` names it in the error).
+fn from_json<T: serde::de::DeserializeOwned>(what: &str, text: &str) -> PyResult<T> {
+    serde_json::from_str(text).map_err(|e| err(format!("{what}: not a catena result ({e})")))
+}
+
+/// A task index checked against the number of tasks.
+fn task(what: &str, k: usize, n: usize) -> PyResult<usize> {
+    if k < n {
+        Ok(k)
+    } else {
+        Err(err(format!(
+            "{what} {k}: there are {n} (0 to {})",
+            n.max(1) - 1
+        )))
+    }
+}
+
 /// A fatigue study (a study file: base scene, storm table, fatigue table), every storm run in
 /// parallel: `{"arrays": {"arc", "damage_<fibre>" (annual), "life_<fibre>" (years)}, "summary"}`.
 #[pyfunction]
@@ -330,6 +375,75 @@ fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<B
             .map(|(storm, scene)| catena::study::run_storm(storm, scene).map_err(|e| e.to_string()))
             .collect::<Result<Vec<_>, _>>()
     })?;
+    study_dict(py, &study, &results)
+}
+
+/// A study's tasks, one per storm in the table's order: JSON `[{"index", "id", "scene_hash"}]`.
+#[pyfunction]
+fn study_tasks(path: PathBuf) -> PyResult<String> {
+    let study = catena::study::Study::read(&path).map_err(err)?;
+    let tasks: Vec<_> = study
+        .storms
+        .iter()
+        .enumerate()
+        .map(|(i, (storm, scene))| {
+            serde_json::json!({"index": i, "id": storm.id,
+                               "scene_hash": catena::scene::text_hash(&scene.text)})
+        })
+        .collect();
+    Ok(serde_json::Value::Array(tasks).to_string())
+}
+
+/// One storm of a study (the `index`-th of its table), run with the interpreter released: the
+/// storm's result as JSON text (its damage per fibre along the arc, exact).
+#[pyfunction]
+fn study_storm(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+    let study = catena::study::Study::read(&path).map_err(err)?;
+    let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
+    let r = py
+        .detach(|| catena::study::run_storm(storm, scene))
+        .map_err(err)?;
+    to_json(&r)
+}
+
+/// A study from its storms' results (JSON texts, one per storm in the table's order), the same
+/// dictionary as [`fatigue_study`].
+#[pyfunction]
+fn study_merge<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    results: Vec<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let study = catena::study::Study::read(&path).map_err(err)?;
+    if results.len() != study.storms.len() {
+        return Err(err(format!(
+            "{}: {} storm results for {} storms",
+            study.file,
+            results.len(),
+            study.storms.len()
+        )));
+    }
+    let results: Vec<catena::study::StormResult> = results
+        .iter()
+        .zip(&study.storms)
+        .map(|(t, (storm, _))| from_json(&format!("storm {}", storm.id), t))
+        .collect::<PyResult<_>>()?;
+    for (r, (storm, scene)) in results.iter().zip(&study.storms) {
+        if r.storm.id != storm.id || r.scene_hash != catena::scene::text_hash(&scene.text) {
+            return Err(err(format!(
+                "{}: the result given for storm {} is of another storm or an older scene",
+                study.file, storm.id
+            )));
+        }
+    }
+    study_dict(py, &study, &results)
+}
+
+fn study_dict<'py>(
+    py: Python<'py>,
+    study: &catena::study::Study,
+    results: &[catena::study::StormResult],
+) -> PyResult<Bound<'py, PyDict>> {
     let arc = study
         .storms
         .first()
@@ -342,7 +456,7 @@ fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<B
     arrays.set_item("arc", array(py, &arc, vec![arc.len()]))?;
     let mut lives = serde_json::Map::new();
     for fib in study.fibres() {
-        let d = catena::study::annual_damage(&results, fib.name());
+        let d = catena::study::annual_damage(results, fib.name());
         let life: Vec<f64> = d.iter().map(|x| 1.0 / x).collect();
         let (i, min) =
             life.iter().enumerate().fold(
@@ -385,7 +499,7 @@ fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<B
 #[pyfunction]
 #[pyo3(signature = (path, jobs = 0))]
 fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
-    use catena::sequence::{annual_damage, run_as_laid, run_visit, Sequence};
+    use catena::sequence::{run_as_laid, run_visit, Sequence};
     use rayon::prelude::*;
     let seq = Sequence::read(&path).map_err(err)?;
     let n = seq.visits.len();
@@ -417,6 +531,110 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
         );
         Ok((memory?, laid?))
     })?;
+    sequence_dict(py, &seq, &memory, &laid)
+}
+
+/// A sequence's tasks: JSON `{"visits": [{"index", "storm", "scene_hash"}], "as_laid": bool}`.
+/// The visits with memory are a chain (each needs the carry of the one before); the as-laid
+/// visits are independent.
+#[pyfunction]
+fn sequence_tasks(path: PathBuf) -> PyResult<String> {
+    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let visits: Vec<_> = seq
+        .visits
+        .iter()
+        .enumerate()
+        .map(|(k, (v, _))| {
+            serde_json::json!({"index": k, "storm": v.storm.id, "scene_hash": seq.hash_of(k)})
+        })
+        .collect();
+    Ok(serde_json::json!({"visits": visits, "as_laid": seq.as_laid}).to_string())
+}
+
+/// One visit with memory, from the carry the previous visit left (`None` for the first: the
+/// as-laid state): `(result, carry)` as JSON texts, the carry `None` when the sequence stops here
+/// (the visit's run stopped early).
+#[pyfunction]
+#[pyo3(signature = (path, index, carry = None))]
+fn sequence_visit(
+    py: Python<'_>,
+    path: PathBuf,
+    index: usize,
+    carry: Option<String>,
+) -> PyResult<(String, Option<String>)> {
+    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let k = task("visit", index, seq.visits.len())?;
+    let start: Option<catena_fe::dynamics::Carry> = carry
+        .as_deref()
+        .map(|t| from_json(&format!("the carry into visit {k}"), t))
+        .transpose()?;
+    if (k == 0) != start.is_none() {
+        return Err(err(format!(
+            "visit {k}: {}",
+            if k == 0 {
+                "the first visit starts as laid (no carry)"
+            } else {
+                "needs the carry the visit before it left"
+            }
+        )));
+    }
+    let (r, next) = py
+        .detach(|| catena::sequence::run_visit(&seq, k, start))
+        .map_err(err)?;
+    Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
+}
+
+/// One visit from the as-laid state: its result as JSON text.
+#[pyfunction]
+fn sequence_as_laid(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let k = task("visit", index, seq.visits.len())?;
+    let r = py
+        .detach(|| catena::sequence::run_as_laid(&seq, k))
+        .map_err(err)?;
+    to_json(&r)
+}
+
+/// A sequence from its visits' results (JSON texts: the visits with memory in order, as far as
+/// they went, and the as-laid visits), the same dictionary as [`sequence`].
+#[pyfunction]
+fn sequence_merge<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    memory: Vec<String>,
+    as_laid: Vec<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use catena::sequence::VisitResult;
+    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let parse = |texts: &[String], what: &str| -> PyResult<Vec<VisitResult>> {
+        texts
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                let r: VisitResult = from_json(&format!("{what} visit {k}"), t)?;
+                if k >= seq.visits.len() || r.visit.index != k || r.scene_hash != seq.hash_of(k) {
+                    return Err(err(format!(
+                        "{}: the {what} result given for visit {k} is of another visit or an \
+                         older scene",
+                        seq.file
+                    )));
+                }
+                Ok(r)
+            })
+            .collect()
+    };
+    let memory = parse(&memory, "memory")?;
+    let laid = parse(&as_laid, "as-laid")?;
+    sequence_dict(py, &seq, &memory, &laid)
+}
+
+fn sequence_dict<'py>(
+    py: Python<'py>,
+    seq: &catena::sequence::Sequence,
+    memory: &[catena::sequence::VisitResult],
+    laid: &[catena::sequence::VisitResult],
+) -> PyResult<Bound<'py, PyDict>> {
+    use catena::sequence::annual_damage;
     let st = catena::statics::solve(seq.base.clone()).map_err(err)?;
     let arc = st.model.arc.clone();
     let fibre = memory
@@ -479,7 +697,76 @@ fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
             .map(|r| Some(catena::sweep::run_one(r)))
             .collect::<Vec<_>>())
     })?;
-    let points = catena::sweep::merge(&plan, &runs, &results);
+    sweep_table(&plan, &runs, &results)
+}
+
+/// A sweep's tasks, one per run (a parameter point, times each storm for a study base): JSON
+/// `[{"index", "id", "point", "scene_hash"}]`.
+#[pyfunction]
+fn sweep_tasks(path: PathBuf) -> PyResult<String> {
+    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let tasks: Vec<_> = plan
+        .runs()
+        .iter()
+        .map(|r| {
+            serde_json::json!({"index": r.index, "id": r.id, "point": r.point,
+                               "scene_hash": catena::sweep::run_hash(r)})
+        })
+        .collect();
+    Ok(serde_json::Value::Array(tasks).to_string())
+}
+
+/// One run of a sweep, with the interpreter released: its result as JSON text (a run that fails
+/// says why in its `error`, as on the command line).
+#[pyfunction]
+fn sweep_run(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let runs = plan.runs();
+    let spec = &runs[task("run", index, runs.len())?];
+    to_json(&py.detach(|| catena::sweep::run_one(spec)))
+}
+
+/// A sweep's table from its runs' results (JSON texts, or `None` for a run without one, which
+/// marks its point failed), the same as [`sweep`].
+#[pyfunction]
+fn sweep_merge(path: PathBuf, results: Vec<Option<String>>) -> PyResult<String> {
+    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let runs = plan.runs();
+    if results.len() != runs.len() {
+        return Err(err(format!(
+            "{}: {} run results for {} runs",
+            plan.file,
+            results.len(),
+            runs.len()
+        )));
+    }
+    let results: Vec<Option<catena::sweep::RunResult>> = results
+        .iter()
+        .zip(&runs)
+        .map(|(t, spec)| {
+            t.as_deref()
+                .map(|t| {
+                    let r: catena::sweep::RunResult = from_json(&format!("run {}", spec.id), t)?;
+                    if r.id != spec.id || r.scene_hash != catena::sweep::run_hash(spec) {
+                        return Err(err(format!(
+                            "{}: the result given for run {} is of another run or an older scene",
+                            plan.file, spec.id
+                        )));
+                    }
+                    Ok(r)
+                })
+                .transpose()
+        })
+        .collect::<PyResult<_>>()?;
+    sweep_table(&plan, &runs, &results)
+}
+
+fn sweep_table(
+    plan: &catena::sweep::Plan,
+    runs: &[catena::sweep::RunSpec],
+    results: &[Option<catena::sweep::RunResult>],
+) -> PyResult<String> {
+    let points = catena::sweep::merge(plan, runs, results);
     let names: Vec<String> = plan.parameters.iter().map(|p| p.key.clone()).collect();
     let rows: Vec<_> = points
         .iter()
@@ -506,6 +793,70 @@ fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
     Ok(serde_json::Value::Array(rows).to_string())
 }
 
+/// The animated touchdown zone (`catena animate`) from a run's arrays (`{name: (bytes, shape)}`:
+/// `arc`, `time`, `x`, `z`, `penetration`, `seabed_force`, `bending_moment`, `top_x`, `top_z`,
+/// `outer_diameter`): `{"frames", "bytes", "seconds"}` as JSON text.
+#[pyfunction]
+fn animate_arrays(
+    py: Python<'_>,
+    arrays: &Bound<'_, PyDict>,
+    out: PathBuf,
+    frames: usize,
+    fps: f64,
+    colour: &str,
+) -> PyResult<String> {
+    let get = |name: &str| -> PyResult<Vec<f64>> {
+        let item = arrays
+            .get_item(name)?
+            .ok_or_else(|| err(format!("animate: the results have no `{name}`")))?;
+        let (bytes, _shape): (Vec<u8>, Vec<usize>) = item.extract()?;
+        Ok(bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+            .collect())
+    };
+    let colour = catena_io::animate::Colour::parse(colour).ok_or_else(|| {
+        err(format!(
+            "animate: colour: expected \"penetration\" or \"seabed_force\", got {colour:?}"
+        ))
+    })?;
+    if frames < 2 || !(fps.is_finite() && fps > 0.0 && fps <= 50.0) {
+        return Err(err(format!(
+            "animate: expected frames >= 2 and 0 < fps <= 50, got {frames} and {fps}"
+        )));
+    }
+    let rec = catena_io::animate::Records {
+        arc: get("arc")?,
+        time: get("time")?,
+        x: get("x")?,
+        z: get("z")?,
+        penetration: get("penetration")?,
+        seabed_force: get("seabed_force")?,
+        bending_moment: get("bending_moment")?,
+        top_x: get("top_x")?,
+        top_z: get("top_z")?,
+        od: get("outer_diameter")?,
+    };
+    let opts = catena_io::animate::Options {
+        frames,
+        fps,
+        colour,
+        ..Default::default()
+    };
+    let r = py
+        .detach(|| catena_io::animate::animate(&out, &rec, &opts))
+        .map_err(err)?;
+    Ok(serde_json::json!({"frames": r.frames, "bytes": r.bytes, "seconds": r.seconds}).to_string())
+}
+
+/// Each node's outer diameter, m, from a scene's text and its case file's path (the `scene` and
+/// `case` attributes of `results.h5`), as the command line's `catena animate` finds them.
+#[pyfunction]
+fn node_diameters(text: &str, case: &str, nodes: usize) -> PyResult<Vec<f64>> {
+    catena_io::animate::diameters(text, case, nodes)
+        .ok_or_else(|| err("the scene gives no pipe diameter (line.od or line types)"))
+}
+
 /// The version of the catena library inside.
 #[pyfunction]
 fn version() -> &'static str {
@@ -521,6 +872,18 @@ fn _catena(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(sequence, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
+    m.add_function(wrap_pyfunction!(study_tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(study_storm, m)?)?;
+    m.add_function(wrap_pyfunction!(study_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence_tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence_visit, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence_as_laid, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_run, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(animate_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(node_diameters, m)?)?;
     m.add("CatenaError", m.py().get_type::<CatenaError>())?;
     Ok(())
 }

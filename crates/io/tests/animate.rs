@@ -1,0 +1,138 @@
+//! The animated touchdown zone (`catena_io::animate`): a real run's records drawn within the frame
+//! budget, to a GIF that decodes frame by frame, small enough to e-mail; the frame choice; bad
+//! shapes refused with the source named.
+
+use std::path::Path;
+
+use catena::observe::{Observer, Records as RunRecords};
+use catena::run::RunOptions;
+use catena_io::animate::{animate, diameters, frame_records, Colour, Options, Records};
+
+fn heave_records(duration: f64) -> Records {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let case = root.join("cases/benchmarks/scr-heave.toml");
+    let scene = catena::statics::read_scene(&case).expect("the heave benchmark reads");
+    let files = catena::scene::DirResolver::beside(&case);
+    let scene = scene
+        .edited(
+            &[
+                catena::scene::edit::Edit::set("dynamic.duration", toml::Value::Float(duration)),
+                catena::scene::edit::Edit::set("dynamic.output_interval", toml::Value::Float(0.5)),
+                catena::scene::edit::Edit::set("dynamic.envelope_start", toml::Value::Float(0.0)),
+            ],
+            &files,
+        )
+        .expect("edits apply");
+    let od = scene.model.node_od.clone();
+    let mut rec = RunRecords::new();
+    {
+        let mut extra: [&mut dyn Observer; 1] = [&mut rec];
+        catena::run::simulate(scene, &mut extra, RunOptions::default()).expect("the run completes");
+    }
+    let series = |n: &str| rec.series.iter().find(|s| s.0 == n).expect(n).1.clone();
+    let field = |n: &str| rec.fields.iter().find(|s| s.0 == n).expect(n).1.clone();
+    Records {
+        arc: rec.arc.clone(),
+        time: series("time"),
+        x: field("x"),
+        z: field("z"),
+        penetration: field("penetration"),
+        seabed_force: field("seabed_force"),
+        bending_moment: field("bending_moment"),
+        top_x: series("top_x"),
+        top_z: series("top_z"),
+        od,
+    }
+}
+
+#[test]
+fn the_frames_are_chosen_evenly_within_the_budget_first_and_last_always() {
+    assert_eq!(frame_records(5, 120), vec![0, 1, 2, 3, 4]);
+    let f = frame_records(2001, 120);
+    assert_eq!(f.len(), 120);
+    assert_eq!((f[0], f[119]), (0, 2000));
+    let gaps: Vec<usize> = f.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(gaps.iter().all(|&g| g == 16 || g == 17), "{gaps:?}");
+}
+
+#[test]
+fn a_heave_run_animates_to_a_small_gif_that_decodes_frame_by_frame() {
+    let rec = heave_records(20.0);
+    let dir = std::env::temp_dir().join(format!("catena-animate-{}", std::process::id()));
+    for (colour, budget) in [(Colour::Penetration, 30), (Colour::SeabedForce, 12)] {
+        let path = dir.join(format!("tdz-{budget}.gif"));
+        let opts = Options {
+            frames: budget,
+            colour,
+            ..Options::default()
+        };
+        let r = animate(&path, &rec, &opts).expect("animates");
+        // 41 records (0 to 20 s every 0.5 s): `budget` of them drawn.
+        assert_eq!(r.frames, budget);
+        assert_eq!(r.seconds, 20.0);
+        let bytes = std::fs::read(&path).expect("written");
+        assert_eq!(bytes.len() as u64, r.bytes);
+        assert!(r.bytes < 400_000, "{} bytes for {budget} frames", r.bytes);
+        let mut d = gif::DecodeOptions::new();
+        d.set_color_output(gif::ColorOutput::Indexed);
+        let mut d = d.read_info(bytes.as_slice()).expect("a GIF");
+        assert_eq!((d.width(), d.height()), (800, 760));
+        let mut frames = 0;
+        let mut changed = 0usize;
+        while let Some(f) = d.read_next_frame().expect("a frame decodes") {
+            if frames > 0 {
+                // After the first, each frame holds only what changed (and some of it does: the
+                // line moves).
+                assert_eq!(f.transparent, Some(255));
+                changed += f.buffer.iter().filter(|&&p| p != 255).count();
+            }
+            frames += 1;
+        }
+        assert_eq!(frames, budget);
+        assert!(
+            changed > 1000,
+            "the frames after the first change {changed} pixels"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn records_of_the_wrong_shape_are_refused_naming_the_source() {
+    let mut rec = heave_records(1.0);
+    rec.od.pop();
+    let e = animate(Path::new("/tmp/never.gif"), &rec, &Options::default())
+        .expect_err("a diameter short");
+    let m = e.to_string();
+    assert!(
+        m.contains("never.gif") && m.contains("outer diameter"),
+        "{m}"
+    );
+    let e = animate(
+        Path::new("/tmp/never.gif"),
+        &Records::default(),
+        &Options::default(),
+    )
+    .expect_err("no records");
+    assert!(e.to_string().contains("nothing to animate"), "{e}");
+}
+
+#[test]
+fn the_diameters_come_from_the_scene_or_line_od() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let case = root.join("cases/lazy-wave/static.toml");
+    let text = std::fs::read_to_string(&case).expect("the lazy wave reads");
+    let scene = catena::statics::read_scene(&case).expect("the lazy wave parses");
+    let n = scene.model.node_od.len();
+    let od = diameters(&text, &case.display().to_string(), n).expect("its diameters");
+    // A line of sections: the buoyancy modules' diameter differs from the pipe's.
+    assert_eq!(od, scene.model.node_od);
+    assert!(od.iter().any(|&d| d != od[0]));
+    // The short form, the case file gone: `line.od` for every node.
+    let heave = std::fs::read_to_string(root.join("cases/benchmarks/scr-heave.toml"))
+        .expect("the heave benchmark reads");
+    let od = diameters(&heave, "/nowhere/scr-heave.toml", 7).expect("line.od");
+    assert_eq!(od.len(), 7);
+    assert!(od.iter().all(|&d| d == od[0] && d > 0.1));
+    assert!(diameters("[line]\nlength = 3.0\n", "x.toml", 3).is_none());
+}
