@@ -1,6 +1,6 @@
 //! The heave benchmark (`cases/benchmarks/scr-heave.toml`: 400 elements, 2000 steps of 0.05 s),
 //! statics included, without file output: the target is 1 s of wall time on one core.
-//! Also one dynamic step on its own.
+//! Also one dynamic step on its own, and the 2000 steps bare against the run with its outputs.
 //!
 //! Run: `cargo bench -p catena-benches --bench dynamics`.
 
@@ -20,7 +20,45 @@ fn bench(c: &mut Criterion) {
             catena::run::run(st, &mut [], catena::run::RunOptions::default()).expect("run")
         })
     });
+    // What the outputs cost (issue 31: at most 10 % over the bare stepper): the same 2000 steps
+    // from the same statics, (a) the bare stepper (the dynamic model prepared, then `advance`
+    // 2000 times, nothing observed), (b) `run::run` with its built-in outputs (range graphs,
+    // gauges, touchdown, top history) and the command line's HDF5 recorder writing every record
+    // to a file, as `catena run` does.
     let st = catena::statics::solve(scene.clone()).expect("statics");
+    g.bench_function("heave_bare_stepper", |b| {
+        b.iter(|| {
+            let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+            let mut ws = DynWorkspace::new(&dm.line).expect("ws");
+            let mut s = dynamics::initial_state(&dm, &st.u, &mut ws);
+            let steps = (spec.duration / spec.dt).round() as usize;
+            for _ in 0..steps {
+                dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+            }
+            s
+        })
+    });
+    let dir = std::env::temp_dir().join(format!("catena-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let h5 = dir.join("results.h5");
+    let spec = st.scene.dynamic.as_ref().expect("a dynamic table");
+    let gauges: Vec<String> = spec.gauges.iter().map(|g| g.name.clone()).collect();
+    // Compressed as `catena run` does it (when records are decimated).
+    let compress = spec.output_every > 1;
+    g.bench_function("heave_run_with_outputs", |b| {
+        b.iter(|| {
+            let mut rec =
+                catena_io::h5::Recorder::create(&h5, &st, &gauges, compress).expect("recorder");
+            let r = catena::run::run(
+                st.clone(),
+                &mut [&mut rec],
+                catena::run::RunOptions::default(),
+            )
+            .expect("run");
+            drop(rec);
+            r
+        })
+    });
     let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
     let mut ws = DynWorkspace::new(&dm.line).expect("ws");
     let state0 = dynamics::initial_state(&dm, &st.u, &mut ws);

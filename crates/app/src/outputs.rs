@@ -20,15 +20,15 @@ use crate::observe::{Envelopes, Gauges, Observer, TopHistory};
 use crate::scene::riser::DynamicSpec;
 
 /// A built-in output: an [`Observer`] that can be handed back by type after the run (and sent to
-/// another thread with it).
-pub trait Output: Observer + Any + Send {
+/// another thread with it, or shared by the threads that write a run's files and plots).
+pub trait Output: Observer + Any + Send + Sync {
     /// Itself, to be downcast.
     fn as_any(&self) -> &dyn Any;
     /// Itself, to be taken out by type.
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
 
-impl<T: Observer + Any + Send> Output for T {
+impl<T: Observer + Any + Send + Sync> Output for T {
     fn as_any(&self) -> &dyn Any {
         self
     }

@@ -113,12 +113,12 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             .unwrap_or_else(|| st.scene.dynamic.as_ref().is_some_and(compress_by_default));
         Recorder::create(&h5p, &st, &gauge_names, compress)?
     };
-    plot::static_line(
-        &out.join("static.png"),
-        &st.scene.title,
-        &st.model,
-        &st.results,
-    )?;
+    // The static plot is drawn on the other core while the dynamics run (off the stepping path).
+    let static_plot = {
+        let (path, title) = (out.join("static.png"), st.scene.title.clone());
+        let (model, results) = (st.model.clone(), st.results.clone());
+        std::thread::spawn(move || plot::static_line(&path, &title, &model, &results))
+    };
     let mut bar = ProgressBar::new();
     let mut cp = opts
         .checkpoint_every
@@ -154,41 +154,27 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let writer_seconds = rec.writer_seconds();
     drop(rec);
     let t_outputs = Instant::now();
-    h5::write_fatigue(&h5p, &r)?;
-    h5::write_design_check(&h5p, &r)?;
-    h5::write_ranges(&h5p, &r)?;
     let js = out.join("summary.json");
-    write_json(&js, &report::dynamic_json(&r))?;
-    plot::dynamic(&out.join("dynamic.png"), &r)?;
-    plot::ranges(&out.join("ranges.png"), &r)?;
-    if r.output::<catena::design_observer::DesignCheck>().is_some() {
-        plot::design_check(&out.join("design_check.png"), &r)?;
-    }
-    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
-        write_json(
-            &out.join("extremes.json"),
-            &serde_json::to_value(&x.results).unwrap_or_default(),
-        )?;
-        let items: Vec<_> = x
-            .results
-            .iter()
-            .filter_map(|e| {
-                let k = x.spec.channels.iter().position(|c| c.name == e.channel)?;
-                Some((e, x.records[k].as_slice(), x.dt))
-            })
-            .collect();
-        plot::extremes(
-            &out.join("extremes.png"),
-            &format!("{} — short-term extremes", r.statics.scene.title),
-            &items,
-        )?;
-    }
-    if !r.spec.gauges.is_empty() {
-        plot::gauges(&out.join("gauges.png"), &r)?;
-    }
-    if r.model.environment.waves.is_some() {
-        plot::sea(&out.join("sea.png"), &r)?;
-    }
+    // The two large plots on the second core while this one writes the HDF5 datasets, the summary
+    // and the other plots.
+    let (drawn, written) = std::thread::scope(|scope| {
+        let r = &r;
+        let drawn = scope.spawn(move || -> Result<(), AppError> {
+            plot::dynamic(&out.join("dynamic.png"), r)?;
+            plot::ranges(&out.join("ranges.png"), r)
+        });
+        let written = (|| -> Result<(), AppError> {
+            h5::write_fatigue(&h5p, r)?;
+            h5::write_design_check(&h5p, r)?;
+            h5::write_ranges(&h5p, r)?;
+            write_json(&js, &report::dynamic_json(r))?;
+            other_run_plots(out, r)
+        })();
+        (joined(drawn.join(), out), written)
+    });
+    drawn?;
+    written?;
+    joined(static_plot.join(), out)?;
     let outputs_seconds = t_outputs.elapsed().as_secs_f64();
     let mut t = report::dynamic_text(&r);
     let _ = writeln!(
@@ -223,6 +209,50 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         }
         _ => Ok(t),
     }
+}
+
+/// A plotting thread's result: its error, or its panic as an error naming the output folder.
+fn joined(r: std::thread::Result<Result<(), AppError>>, out: &Path) -> Result<(), AppError> {
+    r.unwrap_or_else(|_| {
+        Err(AppError::Plot {
+            path: out.to_path_buf(),
+            message: "a plotting thread panicked".into(),
+        })
+    })
+}
+
+/// The plots of `catena run` besides the static, dynamic and range plots: the design check, the
+/// extremes (with `extremes.json`), the gauges and the sea, each when the run has it.
+fn other_run_plots(out: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
+    if r.output::<catena::design_observer::DesignCheck>().is_some() {
+        plot::design_check(&out.join("design_check.png"), r)?;
+    }
+    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+        write_json(
+            &out.join("extremes.json"),
+            &serde_json::to_value(&x.results).unwrap_or_default(),
+        )?;
+        let items: Vec<_> = x
+            .results
+            .iter()
+            .filter_map(|e| {
+                let k = x.spec.channels.iter().position(|c| c.name == e.channel)?;
+                Some((e, x.records[k].as_slice(), x.dt))
+            })
+            .collect();
+        plot::extremes(
+            &out.join("extremes.png"),
+            &format!("{} — short-term extremes", r.statics.scene.title),
+            &items,
+        )?;
+    }
+    if !r.spec.gauges.is_empty() {
+        plot::gauges(&out.join("gauges.png"), r)?;
+    }
+    if r.model.environment.waves.is_some() {
+        plot::sea(&out.join("sea.png"), r)?;
+    }
+    Ok(())
 }
 
 /// `catena rainflow SERIES.csv --out CYCLES.csv [--column NAME] [--sn CURVE] [--scf X]`: rainflow
