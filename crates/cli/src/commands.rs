@@ -105,13 +105,19 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let gauge_names: Vec<String> = st.scene.dynamic.as_ref().map_or_else(Vec::new, |d| {
         d.gauges.iter().map(|g| g.name.clone()).collect()
     });
+    let mut old_file = None;
     let mut rec = if restart.is_some() && h5p.exists() {
         Recorder::open(&h5p, st.model.nodes(), &gauge_names)?
     } else {
         let compress = opts
             .compress
             .unwrap_or_else(|| st.scene.dynamic.as_ref().is_some_and(compress_by_default));
-        Recorder::create(&h5p, &st, &gauge_names, compress)?
+        // A results file of an earlier run is moved aside and deleted on another thread: truncating
+        // a large file in place costs the filesystem as long as a short run's statics.
+        let old = set_aside(&h5p);
+        let rec = Recorder::create(&h5p, &st, &gauge_names, compress)?;
+        old_file = old;
+        rec
     };
     // The static plot is drawn on the other core while the dynamics run (off the stepping path).
     let static_plot = {
@@ -155,14 +161,12 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     drop(rec);
     let t_outputs = Instant::now();
     let js = out.join("summary.json");
-    // The two large plots on the second core while this one writes the HDF5 datasets, the summary
-    // and the other plots.
+    // The two large plots on threads of their own while this one writes the HDF5 datasets, the
+    // summary and the other plots.
     let (drawn, written) = std::thread::scope(|scope| {
         let r = &r;
-        let drawn = scope.spawn(move || -> Result<(), AppError> {
-            plot::dynamic(&out.join("dynamic.png"), r)?;
-            plot::ranges(&out.join("ranges.png"), r)
-        });
+        let dynamic = scope.spawn(move || plot::dynamic(&out.join("dynamic.png"), r));
+        let ranges = scope.spawn(move || plot::ranges(&out.join("ranges.png"), r));
         let written = (|| -> Result<(), AppError> {
             h5::write_fatigue(&h5p, r)?;
             h5::write_design_check(&h5p, r)?;
@@ -170,11 +174,17 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             write_json(&js, &report::dynamic_json(r))?;
             other_run_plots(out, r)
         })();
-        (joined(drawn.join(), out), written)
+        (
+            joined(dynamic.join(), out).and(joined(ranges.join(), out)),
+            written,
+        )
     });
     drawn?;
     written?;
     joined(static_plot.join(), out)?;
+    if let Some(t) = old_file.take() {
+        let _ = t.join();
+    }
     let outputs_seconds = t_outputs.elapsed().as_secs_f64();
     let mut t = report::dynamic_text(&r);
     let _ = writeln!(
@@ -209,6 +219,21 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         }
         _ => Ok(t),
     }
+}
+
+/// Moves an existing file aside (a hidden name beside it) and deletes it on a thread of its own,
+/// returned to be joined; `None` if there is no such file or it cannot be moved (then it is
+/// truncated in place as before).
+fn set_aside(path: &Path) -> Option<std::thread::JoinHandle<()>> {
+    if !path.exists() {
+        return None;
+    }
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let aside = path.with_file_name(format!(".{name}.old-{}", std::process::id()));
+    std::fs::rename(path, &aside).ok()?;
+    Some(std::thread::spawn(move || {
+        let _ = std::fs::remove_file(aside);
+    }))
 }
 
 /// A plotting thread's result: its error, or its panic as an error naming the output folder.
