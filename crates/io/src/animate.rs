@@ -421,7 +421,11 @@ impl Geometry {
                 hi = hi.max(x[i]);
             }
         }
-        let d = rec.od.iter().copied().fold(0.0f64, f64::max).max(1e-3);
+        // The pipe's diameter where it touches down (not a buoyancy section's elsewhere).
+        let d = (0..n)
+            .find(|&i| p0[i] > 0.0)
+            .map_or_else(|| rec.od[n - 1], |i| rec.od[i])
+            .max(1e-3);
         if !lo.is_finite() {
             // Nothing touches down: the window around the lowest node.
             let i = (0..n)
@@ -468,7 +472,9 @@ impl Geometry {
             window: (a, b),
             // The deepest trench and a pipe below the mudline, four times that above.
             z_window: {
-                let deepest = rec.penetration.iter().copied().fold(0.0f64, f64::max);
+                let deepest = (0..nr)
+                    .flat_map(|k| inside.iter().map(move |&i| rec.penetration[k * n + i]))
+                    .fold(0.0f64, f64::max);
                 let h = deepest + d;
                 (mud_mean - 1.5 * h, mud_mean + 4.0 * h)
             },
@@ -619,7 +625,7 @@ fn draw_frame(
             ),
             ("sans-serif", 14),
         )
-        .x_label_area_size(24)
+        .x_label_area_size(34)
         .y_label_area_size(50)
         .build_cartesian_2d(a..b, za..zb)
         .map_err(e)?;
@@ -708,7 +714,11 @@ fn draw_frame(
     let (mlo, mhi) = geo.moment_range;
     let mut c = ChartBuilder::on(&bottom)
         .margin(6)
-        .x_label_area_size(30)
+        .caption(
+            "bending moment: now (line), least and greatest so far (band); negative = sag",
+            ("sans-serif", 14),
+        )
+        .x_label_area_size(34)
         .y_label_area_size(50)
         .build_cartesian_2d(s0..s1, mlo..mhi)
         .map_err(e)?;
@@ -739,14 +749,6 @@ fn draw_frame(
         RGBColor(120, 120, 120).stroke_width(1),
     ))
     .map_err(e)?;
-    let (_, bh) = bottom.dim_in_pixel();
-    bottom
-        .draw_text(
-            "moment now (line), least and greatest so far (band); negative = sag",
-            &("sans-serif", 13).into_font().color(&BLACK),
-            (60, bh as i32 - 50),
-        )
-        .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
 }
