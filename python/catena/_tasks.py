@@ -134,26 +134,31 @@ def _raise_failed(what, failed, total, checkpoint):
     )
 
 
-def fatigue_study(path, executor, checkpoint):
-    path = str(_Path(path).resolve())
-    plan = _json.loads(_catena.study_tasks(path))
+def _independent(path, plan, name, task, executor, checkpoint):
+    """Runs a plan's independent tasks (``name(t)`` names each, ``task`` runs it on the path and
+    the task's index); returns the tasks in the plan's order and their results by name."""
     store = _Store(checkpoint)
-    tasks = [(f"storm-{t['id']}", t["scene_hash"], study_storm, (path, t["index"])) for t in plan]
+    tasks = [(name(t), t["scene_hash"], task, (path, t["index"])) for t in plan]
     done, failed = _run_all(_executor(executor), tasks, store)
     if failed:
         _raise_failed(path, failed, len(tasks), checkpoint)
-    return _catena.study_merge(path, [done[name] for name, *_ in tasks])
+    return [n for n, *_ in tasks], done
+
+
+def fatigue_study(path, executor, checkpoint):
+    path = str(_Path(path).resolve())
+    plan = _json.loads(_catena.study_tasks(path))
+    names, done = _independent(path, plan, lambda t: f"storm-{t['id']}", study_storm, executor,
+                               checkpoint)
+    return _catena.study_merge(path, [done[n] for n in names])
 
 
 def sweep(path, executor, checkpoint):
     path = str(_Path(path).resolve())
     plan = _json.loads(_catena.sweep_tasks(path))
-    store = _Store(checkpoint)
-    tasks = [(f"run-{t['id']}", t["scene_hash"], sweep_run, (path, t["index"])) for t in plan]
-    done, failed = _run_all(_executor(executor), tasks, store)
-    if failed:
-        _raise_failed(path, failed, len(tasks), checkpoint)
-    return _catena.sweep_merge(path, [done.get(name) for name, *_ in tasks])
+    names, done = _independent(path, plan, lambda t: f"run-{t['id']}", sweep_run, executor,
+                               checkpoint)
+    return _catena.sweep_merge(path, [done.get(n) for n in names])
 
 
 def sequence(path, executor, checkpoint):

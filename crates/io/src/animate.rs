@@ -119,6 +119,28 @@ pub struct Report {
 }
 
 impl Records {
+    /// Records from a source of named arrays (the names of `results.h5`'s `/dynamic`: `arc`,
+    /// `time`, `x`, `z`, `penetration`, `seabed_force`, `bending_moment`, `top_x`, `top_z`), with
+    /// each node's diameter from `od` (given the arc lengths).
+    pub fn from_named<E>(
+        get: impl Fn(&str) -> Result<Vec<f64>, E>,
+        od: impl FnOnce(&[f64]) -> Result<Vec<f64>, E>,
+    ) -> Result<Self, E> {
+        let arc = get("arc")?;
+        Ok(Self {
+            od: od(&arc)?,
+            time: get("time")?,
+            x: get("x")?,
+            z: get("z")?,
+            penetration: get("penetration")?,
+            seabed_force: get("seabed_force")?,
+            bending_moment: get("bending_moment")?,
+            top_x: get("top_x")?,
+            top_z: get("top_z")?,
+            arc,
+        })
+    }
+
     fn n(&self) -> usize {
         self.arc.len()
     }
@@ -567,13 +589,7 @@ fn draw_frame(
         .y_label_area_size(50)
         .build_cartesian_2d(wx0..wx1, wz0..wz1)
         .map_err(e)?;
-    c.configure_mesh()
-        .disable_mesh()
-        .x_desc("x (m)")
-        .y_desc("z (m)")
-        .label_style(("sans-serif", 12))
-        .draw()
-        .map_err(e)?;
+    axes(&mut c, "x (m)", "z (m)").map_err(e)?;
     let light = RGBColor(190, 190, 190);
     let pipe = RGBColor(30, 60, 140);
     c.draw_series(LineSeries::new(
@@ -629,13 +645,7 @@ fn draw_frame(
         .y_label_area_size(50)
         .build_cartesian_2d(a..b, za..zb)
         .map_err(e)?;
-    c.configure_mesh()
-        .disable_mesh()
-        .x_desc("x (m)")
-        .y_desc("z (m)")
-        .label_style(("sans-serif", 12))
-        .draw()
-        .map_err(e)?;
+    axes(&mut c, "x (m)", "z (m)").map_err(e)?;
     // The soil: the mudline less the trench under the nodes' present places, filled down.
     let near: Vec<usize> = (0..n)
         .filter(|&i| x[i] >= a - 5.0 && x[i] <= b + 5.0)
@@ -722,13 +732,7 @@ fn draw_frame(
         .y_label_area_size(50)
         .build_cartesian_2d(s0..s1, mlo..mhi)
         .map_err(e)?;
-    c.configure_mesh()
-        .disable_mesh()
-        .x_desc("arc length from the top (m)")
-        .y_desc("moment (kN·m)")
-        .label_style(("sans-serif", 12))
-        .draw()
-        .map_err(e)?;
+    axes(&mut c, "arc length from the top (m)", "moment (kN·m)").map_err(e)?;
     let band: Vec<(f64, f64)> = span
         .iter()
         .map(|&i| (rec.arc[i], m_hi[i] / 1e3))
@@ -751,6 +755,24 @@ fn draw_frame(
     .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+/// A panel's axes: no grid, the two labels, small tick labels.
+fn axes<DB: DrawingBackend>(
+    c: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    x: &str,
+    y: &str,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    c.configure_mesh()
+        .disable_mesh()
+        .x_desc(x)
+        .y_desc(y)
+        .label_style(("sans-serif", 12))
+        .draw()
 }
 
 /// The moment axis over the whole run (so the axis does not jump between frames), kN·m.

@@ -1221,24 +1221,16 @@ pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> 
         .attr("case")
         .and_then(|a| a.read_scalar())
         .map_err(&err)?;
-    let arc = read("dynamic/arc")?;
-    let n = arc.len();
-    let od = crate::animate::diameters(scene.as_str(), case.as_str(), n).ok_or_else(|| {
-        bad(
-            "the scene in the `scene` attribute gives no pipe diameter (line.od or line types)"
-                .into(),
-        )
-    })?;
-    Ok(crate::animate::Records {
-        time: read("dynamic/time")?,
-        x: read("dynamic/x")?,
-        z: read("dynamic/z")?,
-        penetration: read("dynamic/penetration")?,
-        seabed_force: read("dynamic/seabed_force")?,
-        bending_moment: read("dynamic/bending_moment")?,
-        top_x: read("dynamic/top_x")?,
-        top_z: read("dynamic/top_z")?,
-        od,
-        arc,
-    })
+    crate::animate::Records::from_named(
+        |name| read(&format!("dynamic/{name}")),
+        |arc| {
+            crate::animate::diameters(scene.as_str(), case.as_str(), arc.len()).ok_or_else(|| {
+                bad(
+                    "the scene in the `scene` attribute gives no pipe diameter (line.od or line \
+                     types)"
+                        .into(),
+                )
+            })
+        },
+    )
 }

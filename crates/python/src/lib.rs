@@ -825,18 +825,7 @@ fn animate_arrays(
             "animate: expected frames >= 2 and 0 < fps <= 50, got {frames} and {fps}"
         )));
     }
-    let rec = catena_io::animate::Records {
-        arc: get("arc")?,
-        time: get("time")?,
-        x: get("x")?,
-        z: get("z")?,
-        penetration: get("penetration")?,
-        seabed_force: get("seabed_force")?,
-        bending_moment: get("bending_moment")?,
-        top_x: get("top_x")?,
-        top_z: get("top_z")?,
-        od: get("outer_diameter")?,
-    };
+    let rec = catena_io::animate::Records::from_named(|name| get(name), |_| get("outer_diameter"))?;
     let opts = catena_io::animate::Options {
         frames,
         fps,
