@@ -677,7 +677,9 @@ fn forces_at_iterate(
         c_v,
     };
     loads::assemble(&dm.loads(), &at, seabed, scale, asm, &mut ws.loads);
-    ws.f.copy_from_slice(&asm.residual);
+    // Exchanged, not copied: the next assembly's element pass writes every entry of the residual
+    // before anything adds to it.
+    std::mem::swap(&mut ws.f, &mut asm.residual);
 }
 
 /// The water kinematics at each node at `t` into `ws.wave_kin` (nothing without waves, or without
@@ -792,24 +794,30 @@ fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
 /// normal to the tangent there; attached bodies' added mass in both directions.
 fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
     let (model, pl) = (&dm.line, &dm.placement);
-    ws.mass.copy_from_slice(&ws.structural_mass);
-    if let Some(h) = &dm.environment.hydro {
-        loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
-        let [cos, sin] = &ws.loads.node_tangent;
-        let hc = h.coefficients();
-        for (i, m) in ws.mass.iter_mut().enumerate() {
-            let c = model.node_coefficients.get(i).unwrap_or(&hc);
-            let ma = h.added_mass(c, model.node_hydro_od[i], model.tributary[i]);
-            let (tx, ty) = (cos[i], sin[i]);
-            m[0] += ma * (1.0 - tx * tx);
-            m[1] += -ma * tx * ty;
-            m[2] += ma * (1.0 - ty * ty);
-        }
-        // Attached bodies' added mass: isotropic (a compact body).
-        for a in &model.attachments {
-            ws.mass[a.node][0] += a.added_mass;
-            ws.mass[a.node][2] += a.added_mass;
-        }
+    let Some(h) = &dm.environment.hydro else {
+        ws.mass.copy_from_slice(&ws.structural_mass);
+        return;
+    };
+    loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
+    let [cos, sin] = &ws.loads.node_tangent;
+    let hc = h.coefficients();
+    // The line's own mass plus the added mass, in one pass (the same sums as a copy and `+=`).
+    let line = ws.structural_mass.iter();
+    for (i, (m, s)) in ws.mass.iter_mut().zip(line).enumerate() {
+        let c = model.node_coefficients.get(i).unwrap_or(&hc);
+        let ma = h.added_mass(c, model.node_hydro_od[i], model.tributary[i]);
+        let (tx, ty) = (cos[i], sin[i]);
+        *m = [
+            s[0] + ma * (1.0 - tx * tx),
+            s[1] + -ma * tx * ty,
+            s[2] + ma * (1.0 - ty * ty),
+            s[3],
+        ];
+    }
+    // Attached bodies' added mass: isotropic (a compact body).
+    for a in &model.attachments {
+        ws.mass[a.node][0] += a.added_mass;
+        ws.mass[a.node][2] += a.added_mass;
     }
 }
 
@@ -1056,8 +1064,12 @@ pub fn advance(
     let mut careful = false;
     let mut outcome = Ok(());
     while target - state.t > 1e-9 * dt {
-        let h_try = h.min(target - state.t);
-        if !was_saved && h_try < target - state.t {
+        let remaining = target - state.t;
+        let h_try = h.min(remaining);
+        // A sub-step that leaves the step unfinished needs the State saved first; one that leaves
+        // less than half the loop's allowance (a full step's `target − t` is `dt` give or take an
+        // ulp, so its `h_try` may fall short by that) finishes it.
+        if !was_saved && remaining - h_try > 0.5e-9 * dt {
             copy_state(&mut saved, state);
             was_saved = true;
         }
