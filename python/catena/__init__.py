@@ -176,8 +176,12 @@ def animate(results, out, frames: int = 120, fps: float = 12.0, colour: str = "p
                        "top_x", "top_z"]}
             text, case = (f.attrs[k] for k in ["scene", "case"])
             text, case = (v.decode() if isinstance(v, bytes) else str(v) for v in (text, case))
-            arrays["outer_diameter"] = _np.array(
-                _catena.node_diameters(text, case, arrays["arc"].size))
+            # Each node's diameter as the run used it; a file written before /line existed:
+            # from the scene it carries.
+            od = f["line/contact_od"][...] if "line/contact_od" in f else None
+            if od is None or od.size != arrays["arc"].size:
+                od = _np.array(_catena.node_diameters(text, case, arrays["arc"].size))
+            arrays["outer_diameter"] = od
     raw = {k: (_np.ascontiguousarray(v, dtype="<f8").tobytes(), list(_np.shape(v)))
            for k, v in arrays.items() if isinstance(v, _np.ndarray)}
     return _json.loads(_catena.animate_arrays(raw, str(out), int(frames), float(fps), colour))

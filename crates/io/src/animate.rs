@@ -190,6 +190,8 @@ impl Records {
 /// attribute) and the case file's path (its `case` attribute; its folder resolves the files the
 /// scene names): the model's diameters, as the run used them. If the scene no longer reads there
 /// (a table file moved), `line.od` for every node (`nodes` of them); `None` if neither is found.
+/// For a `results.h5` that has `/line/contact_od` (every file written since `/line` exists),
+/// `h5::read_animation` reads the diameters there instead, whatever became of the files.
 pub fn diameters(text: &str, case: &str, nodes: usize) -> Option<Vec<f64>> {
     let files = catena::scene::DirResolver::beside(Path::new(case));
     match catena::scene::riser::RiserScene::parse(case, text, &files) {

@@ -1193,7 +1193,8 @@ pub fn read_extreme_channels(
 }
 
 /// A run's records for the animation ([`crate::animate`]): `/dynamic`'s fields and each node's
-/// outer diameter, from the scene the file carries ([`crate::animate::diameters`]).
+/// outer diameter, `/line/contact_od` (in a file written before `/line` existed: from the scene
+/// the file carries, [`crate::animate::diameters`]).
 pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> {
     let err = h5err(path);
     let file = hdf5::File::open(path).map_err(&err)?;
@@ -1224,6 +1225,14 @@ pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> 
     crate::animate::Records::from_named(
         |name| read(&format!("dynamic/{name}")),
         |arc| {
+            // Each node's diameter as the run used it (`/line/contact_od`); a file written before
+            // `/line` existed: from the scene it carries.
+            if file.link_exists("line/contact_od") {
+                let od = read("line/contact_od")?;
+                if od.len() == arc.len() {
+                    return Ok(od);
+                }
+            }
             crate::animate::diameters(scene.as_str(), case.as_str(), arc.len()).ok_or_else(|| {
                 bad(
                     "the scene in the `scene` attribute gives no pipe diameter (line.od or line \
