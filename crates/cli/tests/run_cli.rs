@@ -732,3 +732,25 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
         "{e}"
     );
 }
+
+/// A results file that cannot be created (its name a link into a folder that does not exist) stops
+/// the run with an error naming it. The file is created on the recorder's writer thread while the
+/// run steps, so the run stops at its first hand-over of records, not at step 2000.
+#[test]
+fn a_results_file_that_cannot_be_created_stops_the_run_naming_it() {
+    let out = tmp("uncreatable");
+    let h5 = out.join("results.h5");
+    std::os::unix::fs::symlink("/nonexistent-catena-folder/results.h5", &h5).expect("link");
+    let case = out.join("heave.toml");
+    std::fs::write(&case, heave_text()).expect("case");
+    let t0 = std::time::Instant::now();
+    let err = commands::run(&case, &out, &RunCommandOptions::default())
+        .expect_err("no results file")
+        .to_string();
+    println!("{err} ({:.2} s)", t0.elapsed().as_secs_f64());
+    assert!(err.contains("results.h5") && err.contains("HDF5"), "{err}");
+    assert!(
+        t0.elapsed().as_secs_f64() < 5.0,
+        "the run went on without its file"
+    );
+}

@@ -23,8 +23,9 @@
 //!   each n_t; `/waves/omega` (rad/s), `/waves/wavenumber` (rad/m), `/waves/amplitude` (m) and
 //!   `/waves/phase` (rad), one value per component, with the attributes `direction` (`+x`/`-x`),
 //!   `depth` (m) and `ramp` (s): `η(x, t) = r(t)·Σ a cos(ωt − s k x + ε)` re-synthesises the record.
-//!   Handed in batches of 64 records, or every second of wall time if sooner, to a writer thread
-//!   that writes each batch and flushes the file while the run steps on: a run that stops keeps
+//!   The writer thread creates the file (while the run's first steps are taken) and is handed the
+//!   records in batches of 64, or every second of wall time if sooner; it writes each batch and
+//!   flushes the file while the run steps on: a run that stops keeps
 //!   every record up to its last converged step, and a run killed outright keeps `/static` and every
 //!   record up to about a second (or two batches) before the kill. The recorder is an observer of
 //!   the run ([`Recorder`]); on restart it reopens the file, truncates the records written after the
@@ -170,6 +171,8 @@ struct Batch {
 
 /// What the writer thread is asked to do.
 enum Job {
+    /// Write `/dynamic`'s self-description (the run's start, [`Describe`]).
+    Describe(Describe),
     /// Append a batch and flush the file.
     Write(Batch),
     /// Answer once every earlier job is done, with the first write error if there was one.
@@ -179,6 +182,89 @@ enum Job {
 /// Batches the run may queue ahead of the writer (then it waits): at most this many × 64 records in
 /// memory.
 const QUEUE: usize = 2;
+
+/// What a recorder needs to know of its file's `/dynamic` before the file is there: the nodes,
+/// the series and fields it records, whether it has the sea's series and the design check's
+/// utilisation, and the records already written (a restart).
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    n: usize,
+    ns: usize,
+    nf: usize,
+    has_sea: bool,
+    has_design: bool,
+    written: usize,
+}
+
+/// Builds a new file's datasets (on the writer thread).
+type Init = Box<dyn FnOnce() -> Result<Sink, AppError> + Send>;
+
+/// An output error's message alone (the recorder names the file when it reports it).
+fn output_message(e: AppError) -> String {
+    match e {
+        AppError::Output { message, .. } => message,
+        e => e.to_string(),
+    }
+}
+
+/// `/dynamic`'s self-description, written when the run starts: each gauge's arc length, the arc
+/// axis of the fields, the conventions and the dimension scales.
+struct Describe {
+    /// Each gauge's name and arc length, m.
+    gauges: Vec<(String, f64)>,
+    /// Each node's arc length, m.
+    arc: Vec<f64>,
+    has_design: bool,
+    has_sea: bool,
+}
+
+impl Describe {
+    fn write(&self, sink: &Sink) -> Result<(), AppError> {
+        let err = h5err(&sink.path);
+        let g = sink.file.group("dynamic").map_err(&err)?;
+        for (name, arc) in &self.gauges {
+            let one = g.group(&format!("gauges/{name}")).map_err(&err)?;
+            num_attr(&one, "arc", *arc).map_err(&err)?;
+            attr(&one, "arc_units", "m, from the top").map_err(&err)?;
+        }
+        vector(&g, "arc", &self.arc, "m").map_err(&err)?;
+        for (k, v) in CONVENTIONS {
+            attr(&g, k, v).map_err(&err)?;
+        }
+        let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
+        for (name, _) in FIELDS {
+            dims.push((
+                format!("dynamic/{name}"),
+                vec![Some("dynamic/time"), Some("dynamic/arc")],
+            ));
+        }
+        dims.push((
+            "dynamic/seabed_mode".into(),
+            vec![Some("dynamic/time"), Some("dynamic/arc")],
+        ));
+        if self.has_design {
+            dims.push((
+                "design_check/utilisation".into(),
+                vec![Some("dynamic/time"), Some("dynamic/arc")],
+            ));
+        }
+        let mut one_d: Vec<String> = SERIES[1..]
+            .iter()
+            .map(|(name, _)| format!("dynamic/{name}"))
+            .collect();
+        for (name, _) in &self.gauges {
+            for what in ["bending_moment", "effective_tension"] {
+                one_d.push(format!("dynamic/gauges/{name}/{what}"));
+            }
+        }
+        if self.has_sea {
+            one_d.extend(SEA.iter().map(|(name, _)| format!("dynamic/{name}")));
+        }
+        dims.extend(one_d.into_iter().map(|d| (d, vec![Some("dynamic/time")])));
+        dimension_scales(&sink.file, &dims).map_err(&err)?;
+        sink.file.flush().map_err(&err)
+    }
+}
 
 impl Sink {
     fn write(&mut self, b: &Batch) -> Result<(), String> {
@@ -243,7 +329,8 @@ fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
 /// recorder wait until every batch is in the file.
 pub struct Recorder {
     path: PathBuf,
-    sink: Arc<Mutex<Sink>>,
+    /// The file's datasets: `None` until the writer thread has created the file.
+    sink: Arc<Mutex<Option<Sink>>>,
     jobs: Option<mpsc::SyncSender<Job>>,
     writer: Option<std::thread::JoinHandle<()>>,
     /// The writer's first error, if any.
@@ -302,13 +389,39 @@ const CONVENTIONS: [(&str, &str); 5] = [
 impl Recorder {
     /// Creates `path` anew with the root attributes and `/static` (flushed at once), and the empty
     /// `/dynamic` datasets for the run's nodes and gauges; with `compress`, the float fields are
-    /// stored shuffled and deflated (level 1; `seabed_mode` always is).
+    /// stored shuffled and deflated (level 1; `seabed_mode` always is). The writer thread does it
+    /// (4 ms for the heave benchmark) while the run steps: the first records wait in memory, and an
+    /// error stops the run at the next hand-over of records, naming the file.
     pub fn create(
         path: &Path,
         statics: &StaticRun,
         gauges: &[String],
         compress: bool,
     ) -> Result<Self, AppError> {
+        let dynamic = statics.scene.dynamic.as_ref();
+        let has_sea = dynamic.is_some_and(|d| d.environment.waves.is_some());
+        let has_design = dynamic.is_some_and(|d| d.design_check.is_some());
+        let ns = SERIES.len() + 2 * gauges.len() + if has_sea { SEA.len() } else { 0 };
+        let nf = FIELDS.len() + usize::from(has_design);
+        let shape = Shape {
+            n: statics.model.nodes(),
+            ns,
+            nf,
+            has_sea,
+            has_design,
+            written: 0,
+        };
+        let (path_buf, statics, gauges) = (path.to_path_buf(), statics.clone(), gauges.to_vec());
+        let init: Init = Box::new(move || Self::build_sink(&path_buf, &statics, &gauges, compress));
+        Self::with_writer(path, shape, Arc::new(Mutex::new(None)), Some(init))
+    }
+
+    fn build_sink(
+        path: &Path,
+        statics: &StaticRun,
+        gauges: &[String],
+        compress: bool,
+    ) -> Result<Sink, AppError> {
         let err = h5err(path);
         let file = hdf5::File::create(path).map_err(&err)?;
         write_static_into(path, &file, statics)?;
@@ -415,24 +528,25 @@ impl Recorder {
         }
         file.flush().map_err(&err)?;
         drop((g, md));
-        Self::from_file(path, file, n, gauges)
+        Ok(Self::sink_of(path, file, n, gauges)?.0)
     }
 
     /// Opens an existing results file to continue its `/dynamic` records (a restart). Its state is
     /// restored from the checkpoint before the run goes on ([`Observer::restore`]).
     pub fn open(path: &Path, n: usize, gauges: &[String]) -> Result<Self, AppError> {
         let file = hdf5::File::open_rw(path).map_err(h5err(path))?;
-        Self::from_file(path, file, n, gauges)
+        let (sink, shape) = Self::sink_of(path, file, n, gauges)?;
+        Self::with_writer(path, shape, Arc::new(Mutex::new(Some(sink))), None)
     }
 
-    fn from_file(
+    /// The datasets of a results file's `/dynamic` for `n` nodes and these gauges, and their shape.
+    fn sink_of(
         path: &Path,
         file: hdf5::File,
         n: usize,
         gauges: &[String],
-    ) -> Result<Self, AppError> {
+    ) -> Result<(Sink, Shape), AppError> {
         let err = h5err(path);
-        let chunk = 64;
         let g = file.group("dynamic").map_err(&err)?;
         let mut series = Vec::new();
         for (name, _) in SERIES {
@@ -466,8 +580,15 @@ impl Recorder {
         }
         let modes = g.dataset("seabed_mode").map_err(&err)?;
         let written = series[0].shape().first().copied().unwrap_or(0);
-        let (ns, nf) = (series.len(), fields.len());
-        let sink = Arc::new(Mutex::new(Sink {
+        let shape = Shape {
+            n,
+            ns: series.len(),
+            nf: fields.len(),
+            has_sea,
+            has_design,
+            written,
+        };
+        let sink = Sink {
             path: path.to_path_buf(),
             file,
             n,
@@ -476,7 +597,27 @@ impl Recorder {
             modes,
             written,
             seconds: 0.0,
-        }));
+        };
+        Ok((sink, shape))
+    }
+
+    /// The recorder of a file of this shape, its writer thread started: the thread first builds the
+    /// datasets with `init` when they are not there yet (a new file), then takes the jobs in order.
+    fn with_writer(
+        path: &Path,
+        shape: Shape,
+        sink: Arc<Mutex<Option<Sink>>>,
+        init: Option<Init>,
+    ) -> Result<Self, AppError> {
+        let Shape {
+            n,
+            ns,
+            nf,
+            has_sea,
+            has_design,
+            written,
+        } = shape;
+        let chunk = 64;
         let failed = Arc::new(Mutex::new(None));
         let (jobs, rx) = mpsc::sync_channel::<Job>(QUEUE);
         let writer = {
@@ -485,20 +626,28 @@ impl Recorder {
                 .name("catena-hdf5".into())
                 .spawn(move || {
                     let first = || lock(&failed);
+                    if let Some(init) = init {
+                        match init() {
+                            Ok(s) => *lock(&sink) = Some(s),
+                            Err(e) => *first() = Some(output_message(e)),
+                        }
+                    }
                     for job in rx {
-                        match job {
-                            // After a failure, batches are dropped: the file keeps what was written.
-                            // (The error lock is not held while writing: the run checks it.)
-                            Job::Write(b) => {
-                                if first().is_none() {
-                                    if let Err(e) = lock(&sink).write(&b) {
-                                        *first() = Some(e);
-                                    }
-                                }
-                            }
+                        // After a failure, jobs are dropped: the file keeps what was written.
+                        // (The error lock is not held while writing: the run checks it.)
+                        let done = match job {
                             Job::Sync(reply) => {
                                 let _ = reply.send(first().clone());
+                                continue;
                             }
+                            _ if first().is_some() => continue,
+                            Job::Write(b) => lock(&sink).as_mut().map_or(Ok(()), |s| s.write(&b)),
+                            Job::Describe(d) => lock(&sink)
+                                .as_ref()
+                                .map_or(Ok(()), |s| d.write(s).map_err(output_message)),
+                        };
+                        if let Err(e) = done {
+                            *first() = Some(e);
                         }
                     }
                 })
@@ -664,7 +813,7 @@ impl Recorder {
 
     /// Seconds the writer thread spent compressing, writing and flushing so far (alongside the run).
     pub fn writer_seconds(&self) -> f64 {
-        lock(&self.sink).seconds
+        lock(&self.sink).as_ref().map_or(0.0, |s| s.seconds)
     }
 
     /// Records recorded so far (written, queued or buffered).
@@ -676,7 +825,9 @@ impl Recorder {
     /// interrupted run wrote after its checkpoint).
     fn truncate(&mut self, records: usize) -> Result<(), AppError> {
         self.sync()?;
-        lock(&self.sink).truncate(records)?;
+        if let Some(s) = lock(&self.sink).as_mut() {
+            s.truncate(records)?;
+        }
         self.queued = records;
         Ok(())
     }
@@ -723,54 +874,19 @@ impl Observer for Recorder {
             ));
         }
         if !restarted {
-            // Self-description: each gauge's arc length, the arc axis of the fields, the
-            // conventions, the dimension scales.
-            let path = self.path.clone();
-            let err = h5err(&path);
-            let sink = lock(&self.sink);
-            let g = sink.file.group("dynamic").map_err(&err)?;
-            for (gauge, arc) in ctx.spec.gauges.iter().zip(&self.gauge_arcs) {
-                let one = g.group(&format!("gauges/{}", gauge.name)).map_err(&err)?;
-                num_attr(&one, "arc", *arc).map_err(&err)?;
-                attr(&one, "arc_units", "m, from the top").map_err(&err)?;
-            }
-            vector(&g, "arc", &ctx.model.line.arc, "m").map_err(&err)?;
-            for (k, v) in CONVENTIONS {
-                attr(&g, k, v).map_err(&err)?;
-            }
-            let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
-            for (name, _) in FIELDS {
-                dims.push((
-                    format!("dynamic/{name}"),
-                    vec![Some("dynamic/time"), Some("dynamic/arc")],
-                ));
-            }
-            dims.push((
-                "dynamic/seabed_mode".into(),
-                vec![Some("dynamic/time"), Some("dynamic/arc")],
-            ));
-            if self.has_design {
-                dims.push((
-                    "design_check/utilisation".into(),
-                    vec![Some("dynamic/time"), Some("dynamic/arc")],
-                ));
-            }
-            let mut one_d: Vec<String> = SERIES[1..]
-                .iter()
-                .map(|(name, _)| format!("dynamic/{name}"))
-                .collect();
-            for gauge in &ctx.spec.gauges {
-                for what in ["bending_moment", "effective_tension"] {
-                    one_d.push(format!("dynamic/gauges/{}/{what}", gauge.name));
-                }
-            }
-            if self.has_sea {
-                one_d.extend(SEA.iter().map(|(name, _)| format!("dynamic/{name}")));
-            }
-            dims.extend(one_d.into_iter().map(|d| (d, vec![Some("dynamic/time")])));
-            dimension_scales(&sink.file, &dims).map_err(&err)?;
-            sink.file.flush().map_err(&err)?;
-            drop((g, sink));
+            // Self-description, by the writer thread (after it has created the file).
+            self.send(Job::Describe(Describe {
+                gauges: ctx
+                    .spec
+                    .gauges
+                    .iter()
+                    .zip(&self.gauge_arcs)
+                    .map(|(g, a)| (g.name.clone(), *a))
+                    .collect(),
+                arc: ctx.model.line.arc.clone(),
+                has_design: self.has_design,
+                has_sea: self.has_sea,
+            }))?;
             let sea = self.sea_values(ctx, first);
             self.push(first.t, first.results, &ctx.model.line.arc, sea)?;
         }
