@@ -136,29 +136,29 @@ def _raise_failed(what, failed, total, checkpoint):
 
 def _independent(path, plan, name, task, executor, checkpoint):
     """Runs a plan's independent tasks (``name(t)`` names each, ``task`` runs it on the path and
-    the task's index); returns the tasks in the plan's order and their results by name."""
+    the task's index); returns their results in the plan's order (every one: a failure raises)."""
     store = _Store(checkpoint)
     tasks = [(name(t), t["scene_hash"], task, (path, t["index"])) for t in plan]
     done, failed = _run_all(_executor(executor), tasks, store)
     if failed:
         _raise_failed(path, failed, len(tasks), checkpoint)
-    return [n for n, *_ in tasks], done
+    return [done[n] for n, *_ in tasks]
 
 
 def fatigue_study(path, executor, checkpoint):
     path = str(_Path(path).resolve())
     plan = _json.loads(_catena.study_tasks(path))
-    names, done = _independent(path, plan, lambda t: f"storm-{t['id']}", study_storm, executor,
-                               checkpoint)
-    return _catena.study_merge(path, [done[n] for n in names])
+    results = _independent(path, plan, lambda t: f"storm-{t['id']}", study_storm, executor,
+                           checkpoint)
+    return _catena.study_merge(path, results)
 
 
 def sweep(path, executor, checkpoint):
     path = str(_Path(path).resolve())
     plan = _json.loads(_catena.sweep_tasks(path))
-    names, done = _independent(path, plan, lambda t: f"run-{t['id']}", sweep_run, executor,
-                               checkpoint)
-    return _catena.sweep_merge(path, [done.get(n) for n in names])
+    results = _independent(path, plan, lambda t: f"run-{t['id']}", sweep_run, executor,
+                           checkpoint)
+    return _catena.sweep_merge(path, results)
 
 
 def sequence(path, executor, checkpoint):

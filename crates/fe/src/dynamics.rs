@@ -1063,13 +1063,15 @@ pub fn advance(
     let mut level = 0u32;
     let mut careful = false;
     let mut outcome = Ok(());
-    while target - state.t > 1e-9 * dt {
+    // What is left of the step below this is rounding: the step is done.
+    let allowance = 1e-9 * dt;
+    while target - state.t > allowance {
         let remaining = target - state.t;
         let h_try = h.min(remaining);
         // A sub-step that leaves the step unfinished needs the State saved first; one that leaves
-        // less than half the loop's allowance (a full step's `target − t` is `dt` give or take an
-        // ulp, so its `h_try` may fall short by that) finishes it.
-        if !was_saved && remaining - h_try > 0.5e-9 * dt {
+        // less than half the allowance (a full step's `target − t` is `dt` give or take an ulp, so
+        // its `h_try` may fall short by that) finishes it.
+        if !was_saved && remaining - h_try > 0.5 * allowance {
             copy_state(&mut saved, state);
             was_saved = true;
         }

@@ -186,7 +186,7 @@ const QUEUE: usize = 2;
 /// What a recorder needs to know of its file's `/dynamic` before the file is there: the nodes,
 /// the series and fields it records, whether it has the sea's series and the design check's
 /// utilisation, and the records already written (a restart).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Shape {
     n: usize,
     ns: usize,
@@ -196,8 +196,8 @@ struct Shape {
     written: usize,
 }
 
-/// Builds a new file's datasets (on the writer thread).
-type Init = Box<dyn FnOnce() -> Result<Sink, AppError> + Send>;
+/// Builds a new file's datasets (on the writer thread), and says what shape they have.
+type Init = Box<dyn FnOnce() -> Result<(Sink, Shape), AppError> + Send>;
 
 /// An output error's message alone (the recorder names the file when it reports it).
 fn output_message(e: AppError) -> String {
@@ -421,7 +421,7 @@ impl Recorder {
         statics: &StaticRun,
         gauges: &[String],
         compress: bool,
-    ) -> Result<Sink, AppError> {
+    ) -> Result<(Sink, Shape), AppError> {
         let err = h5err(path);
         let file = hdf5::File::create(path).map_err(&err)?;
         write_static_into(path, &file, statics)?;
@@ -528,7 +528,7 @@ impl Recorder {
         }
         file.flush().map_err(&err)?;
         drop((g, md));
-        Ok(Self::sink_of(path, file, n, gauges)?.0)
+        Self::sink_of(path, file, n, gauges)
     }
 
     /// Opens an existing results file to continue its `/dynamic` records (a restart). Its state is
@@ -627,8 +627,16 @@ impl Recorder {
                 .spawn(move || {
                     let first = || lock(&failed);
                     if let Some(init) = init {
+                        // The recorder's buffers were sized from the scene before the file
+                        // existed: the file must have that shape (else records would be lost).
                         match init() {
-                            Ok(s) => *lock(&sink) = Some(s),
+                            Ok((s, built)) if built == shape => *lock(&sink) = Some(s),
+                            Ok((_, built)) => {
+                                *first() = Some(format!(
+                                    "the file's /dynamic ({built:?}) is not what the run records \
+                                     ({shape:?})"
+                                ));
+                            }
                             Err(e) => *first() = Some(output_message(e)),
                         }
                     }
