@@ -345,6 +345,10 @@ pub struct SolverMemory {
     pub dt: f64,
     /// Its values, in the sparse pattern's order.
     pub values: Vec<f64>,
+    /// The contraction rate its corrections had, when measured (absent in checkpoints written
+    /// before it was kept).
+    #[serde(default)]
+    pub rate: Option<f64>,
 }
 
 /// Scratch for the dynamics (never saved).
@@ -389,6 +393,9 @@ pub struct DynWorkspace {
     /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
     /// of the next step of the same Δt).
     factored_dt: Option<f64>,
+    /// How fast corrections with that factorisation contracted the residual, when measured
+    /// ([`crate::newton`]: more than one correction per step reuses it while it contracts fast).
+    reuse_rate: Option<f64>,
     /// The free dofs as runs `(g0, e0, len)`: dofs `g0..g0+len` are equations `e0..e0+len` (the
     /// Newton loop's vector operations run over these slices, without a lookup per dof).
     free_runs: Vec<(usize, usize, usize)>,
@@ -451,6 +458,7 @@ impl DynWorkspace {
                 friction_anchor: vec![0.0; friction_anchor_len(line)],
             },
             factored_dt: None,
+            reuse_rate: None,
             wave_kin: vec![None; n],
             wave_scratch: WaveScratch::default(),
             grid_trial: KinematicsGrid::default(),
@@ -462,12 +470,14 @@ impl DynWorkspace {
     /// Drops the factorisation kept for reuse: the next step starts with a full Newton iteration.
     pub fn forget_factorisation(&mut self) {
         self.factored_dt = None;
+        self.reuse_rate = None;
     }
 
     /// The factorisation kept for reuse, as data (see [`SolverMemory`]).
     pub fn solver_memory(&self) -> Option<SolverMemory> {
         self.factored_dt.map(|dt| SolverMemory {
             dt,
+            rate: self.reuse_rate,
             values: self.asm.factored_values().to_vec(),
         })
     }
@@ -489,6 +499,7 @@ impl DynWorkspace {
             .refactor_from(&m.values)
             .map_err(|e| e.to_string())?;
         self.factored_dt = Some(m.dt);
+        self.reuse_rate = m.rate;
         Ok(())
     }
 }
@@ -845,7 +856,7 @@ fn attempt(
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
     wave_kinematics(dm, state, t1, ws);
     let (c_m, c_v, k_scale) = (sc.c_m, sc.c_v, sc.k_scale());
-    let mut nt = Newton::new(ws.factored_dt == Some(dt));
+    let mut nt = Newton::new(ws.factored_dt == Some(dt), ws.reuse_rate, set.tol + noise);
     for it in 0..set.max_iter {
         // Kinematics from the Newmark relations; prescribed dofs from the boundary conditions.
         relations(&sc, state, ws);
@@ -855,7 +866,7 @@ fn attempt(
             &state.u,
             (&mut ws.u, &mut ws.v, &mut ws.a),
         );
-        let pass = nt.pass(it);
+        let pass = nt.pass();
         forces_at_iterate(dm, state, ws, pass, k_scale, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
         sc.residual(&ws.mass, &ws.a, &ws.f, &state.f_prev, &mut ws.g_all);
@@ -872,7 +883,7 @@ fn attempt(
             })
             .sum();
         let r = sq.sqrt() / refn;
-        let accepted = match nt.judge(it, r, set.tol + noise) {
+        let accepted = match nt.judge(it, r) {
             Verdict::Backtrack { back } => {
                 for &(g0, e0, len) in &ws.free_runs {
                     for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
@@ -896,6 +907,7 @@ fn attempt(
                 })
             }
             Accepted::Converged => {
+                ws.reuse_rate = nt.rate();
                 commit(dm, state, ws, t1, dt);
                 return Ok(());
             }
@@ -930,6 +942,7 @@ fn attempt(
             // Converged to machine precision: re-evaluate at the final iterate and commit.
             relations(&sc, state, ws);
             forces_at_iterate(dm, state, ws, Pass::KeepingHistories, k_scale, c_v, dt);
+            ws.reuse_rate = nt.rate();
             commit(dm, state, ws, t1, dt);
             return Ok(());
         }

@@ -6,11 +6,27 @@
 //!
 //! **Lazy tangent, factorisation reuse.** The first iteration of a step reuses the Jacobian
 //! factorised last when it was for the same Δt (a modified-Newton start: one factorisation per step
-//! instead of two). After a correction with a fresh factorisation Newton is quadratic and the next
-//! residual nearly always converges: it is evaluated without the tangent (keeping each node's trial
-//! seabed history for the commit, [`Pass::KeepingHistories`]), and the tangent is assembled at that
-//! iterate only if it does not converge. The converged answer is the same to the bit: the residual
-//! and the tangent do not depend on each other.
+//! instead of two). It goes on reusing it while that pays (a modified-Newton chain, at most
+//! [`MAX_REUSES`] corrections): a correction with the old factorisation contracts the residual
+//! linearly, `r_{k+1} ≈ q·r_k`, with a rate `q` measured at each such correction and carried from
+//! step to step. After a correction from `r` the next iteration evaluates
+//! - the residual keeping histories when `r·q ≤ tol` (expected to converge);
+//! - the residual only when `r·q² ≤ tol` and `q ≤` [`MAX_REUSE_RATE`] (one more reused correction
+//!   expected to converge);
+//! - else the tangent at once (Newton's quadratic path, as without a chain).
+//!
+//! A residual that did not converge is corrected with the old factorisation again only when its
+//! measured `r·q ≤ tol`; otherwise the tangent is assembled at its iterate and factorised. Each
+//! residual-only iteration costs a residual pass and a solve, against the tangent pass (twice a
+//! residual's work) and a factorisation it replaces (`benches/README.md` has the numbers). The
+//! converged answer meets the same tolerance either way, but it is not the same to the bit as full
+//! Newton's: a chain stops at a different iterate.
+//!
+//! After a correction with a fresh factorisation Newton is quadratic and the next residual nearly
+//! always converges: it is evaluated without the tangent (keeping each node's trial seabed history
+//! for the commit, [`Pass::KeepingHistories`]), and the tangent is assembled at that iterate only
+//! if it does not converge (the residual and the tangent do not depend on each other, so this
+//! laziness changes no bit).
 //!
 //! **Backtracking.** A correction after which the residual norm is larger than before it is halved
 //! (the iterate moved back halfway), up to [`MAX_BACKTRACKS`] times, before the next correction is
@@ -70,12 +86,28 @@ pub enum Accepted {
     },
 }
 
+/// Corrections with a reused factorisation in one attempt, at most.
+pub const MAX_REUSES: u32 = 4;
+
+/// The largest contraction rate (`r_k / r_{k−1}`) of a correction with a reused factorisation for
+/// which another one is taken.
+pub const MAX_REUSE_RATE: f64 = 0.1;
+
 /// One attempt's Newton bookkeeping.
 #[derive(Debug, Clone, Copy)]
 pub struct Newton {
-    /// The last factorisation is for this attempt's Δt (the first iteration may reuse it).
-    reusable: bool,
-    after_fresh: bool,
+    /// The tolerance on the relative residual (the floor included).
+    tol: f64,
+    /// The factorisation in hand is the one reused from an earlier step (none fresh yet).
+    old_factor: bool,
+    /// The contraction rate of a correction with the reused factorisation: measured in this
+    /// attempt, or carried from the steps before.
+    rate: Option<f64>,
+    /// The last correction was made with the reused factorisation.
+    reused_last: bool,
+    reuses: u32,
+    /// What the next iteration evaluates.
+    next: Pass,
     r_prev: f64,
     lambda: f64,
     backtracks: u32,
@@ -84,11 +116,20 @@ pub struct Newton {
 }
 
 impl Newton {
-    /// A new attempt; `reusable` when the last factorisation is for its Δt.
-    pub fn new(reusable: bool) -> Self {
+    /// A new attempt to the relative tolerance `tol`; `reusable` when the last factorisation is
+    /// for its Δt, and `rate` the contraction rate its corrections had (if measured).
+    pub fn new(reusable: bool, rate: Option<f64>, tol: f64) -> Self {
         Self {
-            reusable,
-            after_fresh: false,
+            tol,
+            old_factor: reusable,
+            rate: rate.filter(|_| reusable),
+            reused_last: false,
+            reuses: 0,
+            next: if reusable {
+                Pass::Forces
+            } else {
+                Pass::Tangent
+            },
             r_prev: f64::INFINITY,
             lambda: 1.0,
             backtracks: 0,
@@ -97,29 +138,32 @@ impl Newton {
         }
     }
 
-    /// Whether iteration `it` reuses the last factorisation.
-    fn reuse(&self, it: usize) -> bool {
-        it == 0 && self.reusable
+    /// What the next iteration evaluates.
+    pub fn pass(&self) -> Pass {
+        self.next
     }
 
-    /// What iteration `it` evaluates.
-    pub fn pass(&self, it: usize) -> Pass {
-        let lazy = self.reuse(it) || self.after_fresh;
-        match (lazy, self.after_fresh) {
-            (false, _) => Pass::Tangent,
-            (true, true) => Pass::KeepingHistories,
-            (true, false) => Pass::Forces,
-        }
+    /// The contraction rate of the reused factorisation's corrections, as last measured.
+    pub fn rate(&self) -> Option<f64> {
+        self.rate
     }
 
-    /// Judges iteration `it`'s relative residual `r` against the tolerance `tol` (the floor
-    /// included).
-    pub fn judge(&mut self, it: usize, r: f64, tol: f64) -> Verdict {
+    /// Judges the relative residual `r` of iteration `it` (evaluated with [`Self::pass`]).
+    pub fn judge(&mut self, it: usize, r: f64) -> Verdict {
         if r.is_finite() && r > self.r_prev && self.backtracks < MAX_BACKTRACKS {
             // u = u₀ − λ·dq → u₀ − (λ/2)·dq: add back λ/2 of it.
             self.lambda *= 0.5;
             self.backtracks += 1;
             return Verdict::Backtrack { back: self.lambda };
+        }
+        // The rate of a whole correction with the reused factorisation (a backtracked one says
+        // the factorisation is no longer good enough).
+        if self.reused_last {
+            self.rate = Some(if self.backtracks == 0 {
+                r / self.r_prev
+            } else {
+                1.0
+            });
         }
         self.r_prev = r;
         self.lambda = 1.0;
@@ -132,16 +176,40 @@ impl Newton {
         if !r.is_finite() || (it >= 2 && r > 1e4 * self.first) {
             return Verdict::Accepted(Accepted::Diverged);
         }
-        if r <= tol {
+        if r <= self.tol {
             return Verdict::Accepted(Accepted::Converged);
         }
-        let reuse = self.reuse(it);
-        let correct = Accepted::Correct {
-            refresh_tangent: self.after_fresh && !reuse,
-            factor: !reuse,
+        let evaluated = self.next;
+        // Reuse the old factorisation at the start, and again while its corrections contract
+        // fast enough for the next one to converge; never after a tangent was assembled here.
+        let reuse = self.old_factor
+            && evaluated != Pass::Tangent
+            && self.reuses < MAX_REUSES
+            && (it == 0
+                || self
+                    .rate
+                    .is_some_and(|q| q <= MAX_REUSE_RATE && r * q <= self.tol));
+        self.reused_last = reuse;
+        if !reuse {
+            self.old_factor = false;
+            self.next = Pass::KeepingHistories;
+            return Verdict::Accepted(Accepted::Correct {
+                refresh_tangent: evaluated != Pass::Tangent,
+                factor: true,
+            });
+        }
+        self.reuses += 1;
+        // After this correction: converged (predicted), one more reused correction, or the
+        // tangent (Newton's, quadratic from there).
+        self.next = match self.rate {
+            Some(q) if r * q <= self.tol => Pass::KeepingHistories,
+            Some(q) if q <= MAX_REUSE_RATE && r * q * q <= self.tol => Pass::Forces,
+            _ => Pass::Tangent,
         };
-        self.after_fresh = !reuse;
-        Verdict::Accepted(correct)
+        Verdict::Accepted(Accepted::Correct {
+            refresh_tangent: false,
+            factor: false,
+        })
     }
 
     /// `(iteration, relative residual)` of the last accepted iterate.
@@ -264,14 +332,15 @@ mod tests {
     }
 
     /// The bookkeeping of an attempt: a reusable factorisation makes the first pass lazy and asks
-    /// for no factorisation; after a fresh one the next pass keeps histories; a rising residual is
-    /// backtracked three times at most (½, ¼, ⅛ of the correction added back), then accepted; a
-    /// residual 10⁴ times the first from the third iteration diverges.
+    /// for no factorisation; without a measured rate the next pass assembles the tangent; after a
+    /// fresh factorisation the next pass keeps histories; a rising residual is backtracked three
+    /// times at most (½, ¼, ⅛ of the correction added back), then accepted; a residual 10⁴ times
+    /// the first from the third iteration diverges.
     #[test]
     fn the_bookkeeping_of_an_attempt() {
-        let mut n = Newton::new(true);
-        assert_eq!(n.pass(0), Pass::Forces);
-        let v = n.judge(0, 1.0, 1e-9);
+        let mut n = Newton::new(true, None, 1e-9);
+        assert_eq!(n.pass(), Pass::Forces);
+        let v = n.judge(0, 1.0);
         assert_eq!(
             v,
             Verdict::Accepted(Accepted::Correct {
@@ -279,33 +348,98 @@ mod tests {
                 factor: false
             })
         );
-        assert_eq!(n.pass(1), Pass::Tangent);
-        assert!(matches!(
-            n.judge(1, 0.5, 1e-9),
-            Verdict::Accepted(Accepted::Correct { factor: true, .. })
-        ));
-        assert_eq!(n.pass(2), Pass::KeepingHistories);
+        assert_eq!(n.pass(), Pass::Tangent);
+        assert_eq!(
+            n.judge(1, 0.5),
+            Verdict::Accepted(Accepted::Correct {
+                refresh_tangent: false,
+                factor: true
+            })
+        );
+        // The reused correction's rate was measured on the way.
+        assert_eq!(n.rate(), Some(0.5));
+        assert_eq!(n.pass(), Pass::KeepingHistories);
         for back in [0.5, 0.25, 0.125] {
-            assert_eq!(n.judge(2, 0.9, 1e-9), Verdict::Backtrack { back });
+            assert_eq!(n.judge(2, 0.9), Verdict::Backtrack { back });
         }
-        assert!(matches!(
-            n.judge(2, 0.9, 1e-9),
+        assert_eq!(
+            n.judge(2, 0.9),
             Verdict::Accepted(Accepted::Correct {
                 refresh_tangent: true,
                 factor: true
             })
-        ));
-        assert_eq!(n.last(), (2, 0.9));
-        let mut d = Newton::new(false);
-        d.judge(0, 1.0, 1e-9);
-        d.judge(1, 0.5, 1e-9);
-        assert_eq!(
-            d.judge(2, f64::NAN, 1e-9),
-            Verdict::Accepted(Accepted::Diverged)
         );
+        assert_eq!(n.last(), (2, 0.9));
+        let mut d = Newton::new(false, Some(1e-3), 1e-9);
+        assert_eq!(d.pass(), Pass::Tangent);
+        d.judge(0, 1.0);
+        d.judge(1, 0.5);
+        assert_eq!(d.judge(2, f64::NAN), Verdict::Accepted(Accepted::Diverged));
         assert_eq!(
-            Newton::new(false).judge(0, 1e-10, 1e-9),
+            Newton::new(false, None, 1e-9).judge(0, 1e-10),
             Verdict::Accepted(Accepted::Converged)
         );
+    }
+
+    /// The reused factorisation's chain: with a carried rate q, a start residual r0 with
+    /// r0·q² ≤ tol is corrected twice with it (residuals only, the last keeping histories); one
+    /// whose measured rate is too slow for the next correction to converge gets the tangent
+    /// assembled at its iterate and factorised; with r0·q² > tol the tangent is assembled at once
+    /// after the first correction (Newton's quadratic path).
+    #[test]
+    fn the_reused_factorisation_is_kept_while_it_contracts_fast_enough() {
+        let tol = 1e-8;
+        // r0 = 1e-3, q = 1e-3: r1 ≈ 1e-6, r2 ≈ 1e-9.
+        let mut n = Newton::new(true, Some(1e-3), tol);
+        let reuse = Verdict::Accepted(Accepted::Correct {
+            refresh_tangent: false,
+            factor: false,
+        });
+        assert_eq!(n.judge(0, 1e-3), reuse);
+        assert_eq!(n.pass(), Pass::Forces);
+        assert_eq!(n.judge(1, 2e-6), reuse);
+        assert_eq!(n.rate(), Some(2e-6 / 1e-3));
+        assert_eq!(n.pass(), Pass::KeepingHistories);
+        assert_eq!(n.judge(2, 5e-9), Verdict::Accepted(Accepted::Converged));
+        assert_eq!(n.rate(), Some(5e-9 / 2e-6));
+
+        // The second correction contracts by 0.05 only: 1e-6·0.05 > tol, so the tangent.
+        let mut s = Newton::new(true, Some(1e-3), tol);
+        s.judge(0, 1e-3);
+        assert_eq!(
+            s.judge(1, 5e-5),
+            Verdict::Accepted(Accepted::Correct {
+                refresh_tangent: true,
+                factor: true
+            })
+        );
+        assert_eq!(s.pass(), Pass::KeepingHistories);
+        // A fresh factorisation is never given up for the old one.
+        assert!(matches!(
+            s.judge(2, 1e-7),
+            Verdict::Accepted(Accepted::Correct { factor: true, .. })
+        ));
+
+        // r0 = 0.1: 0.1·(1e-3)² = 1e-7 > tol, so the tangent at the first corrected iterate.
+        let mut f = Newton::new(true, Some(1e-3), tol);
+        assert_eq!(f.judge(0, 0.1), reuse);
+        assert_eq!(f.pass(), Pass::Tangent);
+
+        // A carried rate above MAX_REUSE_RATE never continues a chain; at most MAX_REUSES
+        // corrections with the old factorisation.
+        let mut m = Newton::new(true, Some(0.5), 1.0);
+        m.judge(0, 4.0);
+        assert_eq!(m.pass(), Pass::Tangent);
+        // Residuals 1e16, 1e8, 1e4, 100, 10 to a tolerance of 1: each rate ≤ 0.1 and each
+        // r·rate ≤ 1, so only the count stops the chain.
+        let mut k = Newton::new(true, Some(1e-8), 1.0);
+        for (it, r) in [1e16, 1e8, 1e4, 100.0].into_iter().enumerate() {
+            assert_eq!(k.judge(it, r), reuse, "iteration {it}");
+        }
+        assert_eq!(MAX_REUSES, 4);
+        assert!(matches!(
+            k.judge(4, 10.0),
+            Verdict::Accepted(Accepted::Correct { factor: true, .. })
+        ));
     }
 }
