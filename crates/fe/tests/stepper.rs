@@ -944,3 +944,62 @@ fn a_pipe_on_a_slope_presses_normal_to_it_and_hangs_from_its_pin() {
     );
     assert!((along.abs() / (w * len * s) - 1.0).abs() < 1e-6, "{along}");
 }
+
+/// A Workspace rebuilt from the solver memory (the factorisation kept for reuse and the contraction
+/// rate its corrections had) holds the same memory and continues bit for bit: the falling pendulum
+/// of [`structural_damping_spares_a_rigid_pendulum`] (undamped) is stepped 200 times, and from its
+/// State and solver memory after each of steps 100 to 139 (a predictor retry among them, after
+/// which no rate is known yet) the rest is stepped again in a fresh Workspace.
+#[test]
+fn a_restored_solver_memory_continues_bit_for_bit() {
+    let (l, m, g) = (10.0, 10.0, 9.80665);
+    let mline = model(
+        segment(l, 20, 1e10, 1e7, m, m * g, 0.1),
+        Support::Pinned,
+        Support::Free,
+        None,
+    );
+    let q: Vec<f64> = (0..mline.nodes())
+        .flat_map(|i| [mline.arc[i], 0.0, 0.0])
+        .collect();
+    let pl = Placement::new(&q);
+    let dm = dynamic(&mline, &pl, &settings(-0.1, None));
+    let (steps, dt) = (200, 0.002);
+    let mut ws = DynWorkspace::new(&mline).expect("workspace");
+    let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
+    let mut saved = Vec::new();
+    for step in 1..=steps {
+        advance(&dm, &mut st, &mut ws, dt).expect("step");
+        if (100..140).contains(&step) {
+            let memory = ws.solver_memory().expect("a factorisation is kept");
+            saved.push((step, st.clone(), memory));
+        }
+    }
+    let rated = saved.iter().filter(|(_, _, m)| m.rate.is_some()).count();
+    assert!(
+        rated > 30,
+        "rates measured at {rated} of {} steps",
+        saved.len()
+    );
+    let bits = |s: &catena_fe::dynamics::DynState| -> Vec<u64> {
+        s.u.iter()
+            .chain(&s.v)
+            .chain(&s.a)
+            .map(|x| x.to_bits())
+            .collect()
+    };
+    for (step, state, memory) in &saved {
+        let mut again = state.clone();
+        let mut fresh = DynWorkspace::new(&mline).expect("workspace");
+        fresh.restore_solver_memory(memory).expect("restores");
+        assert_eq!(
+            fresh.solver_memory().as_ref(),
+            Some(memory),
+            "step {step}: the memory as restored"
+        );
+        for _ in *step..steps {
+            advance(&dm, &mut again, &mut fresh, dt).expect("step");
+        }
+        assert_eq!(bits(&st), bits(&again), "from step {step}");
+    }
+}
