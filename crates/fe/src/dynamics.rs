@@ -13,8 +13,10 @@
 //! minus external"; `F_n` is kept in the State, so the step is exactly reproducible after a
 //! restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
 //! The first Newton iteration of a step reuses the Jacobian factorised last (same Δt) — a
-//! modified-Newton start that saves one factorisation per step; the following iterations are full
-//! Newton, so the converged answer is the same.
+//! modified-Newton start that saves one factorisation per step — and later ones go on reusing it
+//! while its measured contraction rate lets the next correction converge; otherwise Newton
+//! assembles and factorises the tangent (full Newton from there). Every converged answer meets the
+//! same tolerance ([`crate::newton`] has the rule).
 //!
 //! **Predictor.** A step starts from the constant-acceleration predictor `u_n + Δt v_n + Δt²/2 a_n`.
 //! If Newton diverges from it, the same step is tried once more from the constant-velocity predictor
@@ -336,9 +338,10 @@ pub struct CutCause {
     pub node: usize,
 }
 
-/// The part of the Workspace that changes converged bits: the tangent factorised last and the Δt it
-/// was factorised for (the first Newton iteration of a step of the same Δt reuses it). A checkpoint
-/// carries it so that a restart continues bit for bit.
+/// The part of the Workspace that changes converged bits: the tangent factorised last, the Δt it
+/// was factorised for (the first Newton iterations of a step of the same Δt reuse it) and the
+/// contraction rate its corrections had. A checkpoint carries it so that a restart continues bit
+/// for bit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SolverMemory {
     /// The Δt of the factorised Jacobian, s.
@@ -390,8 +393,8 @@ pub struct DynWorkspace {
     grid_new: bool,
     /// The flexjoint's vessel-side rotation for the step under way, rad.
     fj_rotation: f64,
-    /// The Δt of the Jacobian factorised last (its factorisation is reused for the first iteration
-    /// of the next step of the same Δt).
+    /// The Δt of the Jacobian factorised last (its factorisation is reused for the first
+    /// iterations of the next step of the same Δt).
     factored_dt: Option<f64>,
     /// How fast corrections with that factorisation contracted the residual, when measured
     /// ([`crate::newton`]: more than one correction per step reuses it while it contracts fast).
