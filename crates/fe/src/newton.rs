@@ -103,8 +103,7 @@ pub struct Newton {
     /// The contraction rate of a correction with the reused factorisation: measured in this
     /// attempt, or carried from the steps before.
     rate: Option<f64>,
-    /// The last correction was made with the reused factorisation.
-    reused_last: bool,
+    /// Corrections made with the reused factorisation (the last one was, while `old_factor`).
     reuses: u32,
     /// What the next iteration evaluates.
     next: Pass,
@@ -123,7 +122,6 @@ impl Newton {
             tol,
             old_factor: reusable,
             rate: rate.filter(|_| reusable),
-            reused_last: false,
             reuses: 0,
             next: if reusable {
                 Pass::Forces
@@ -158,7 +156,7 @@ impl Newton {
         }
         // The rate of a whole correction with the reused factorisation (a backtracked one says
         // the factorisation is no longer good enough).
-        if self.reused_last {
+        if self.old_factor && self.reuses > 0 {
             self.rate = Some(if self.backtracks == 0 {
                 r / self.r_prev
             } else {
@@ -189,7 +187,6 @@ impl Newton {
                 || self
                     .rate
                     .is_some_and(|q| q <= MAX_REUSE_RATE && r * q <= self.tol));
-        self.reused_last = reuse;
         if !reuse {
             self.old_factor = false;
             self.next = Pass::KeepingHistories;

@@ -118,6 +118,24 @@ fn bar_history(
     (t, x)
 }
 
+/// The falling pendulum: a 10 m stiff bar (EA 1e10 N, EI 1e7 N·m², 10 kg/m, its weight) of `n`
+/// elements, pinned at its top and free at its tip, lying horizontal at rest: the Model, its base
+/// configuration and its placement.
+fn falling_pendulum(n: usize) -> (LineModel, Vec<f64>, Placement) {
+    let (l, m, g) = (10.0, 10.0, 9.80665);
+    let mline = model(
+        segment(l, n, 1e10, 1e7, m, m * g, 0.1),
+        Support::Pinned,
+        Support::Free,
+        None,
+    );
+    let q: Vec<f64> = (0..mline.nodes())
+        .flat_map(|i| [mline.arc[i], 0.0, 0.0])
+        .collect();
+    let pl = Placement::new(&q);
+    (mline, q, pl)
+}
+
 /// Peaks (local maxima, parabolic refinement) of a sampled signal: `(time, value)`.
 fn peaks(t: &[f64], x: &[f64]) -> Vec<(f64, f64)> {
     let mut out = Vec::new();
@@ -438,17 +456,7 @@ fn structural_damping_spares_a_rigid_pendulum() {
 /// fail outright, steps that fail after committed sub-steps, and steps that succeed only when cut.
 #[test]
 fn a_failed_step_leaves_the_state_as_it_was() {
-    let (l, m, g) = (10.0, 10.0, 9.80665);
-    let mline = model(
-        segment(l, 10, 1e10, 1e7, m, m * g, 0.1),
-        Support::Pinned,
-        Support::Free,
-        None,
-    );
-    let q: Vec<f64> = (0..mline.nodes())
-        .flat_map(|i| [mline.arc[i], 0.0, 0.0])
-        .collect();
-    let pl = Placement::new(&q);
+    let (mline, q, pl) = falling_pendulum(10);
     let set = settings(-0.1, None);
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     let (mut failed, mut failed_after_substeps, mut cut_and_done) = (0, 0, 0);
@@ -952,17 +960,7 @@ fn a_pipe_on_a_slope_presses_normal_to_it_and_hangs_from_its_pin() {
 /// which no rate is known yet) the rest is stepped again in a fresh Workspace.
 #[test]
 fn a_restored_solver_memory_continues_bit_for_bit() {
-    let (l, m, g) = (10.0, 10.0, 9.80665);
-    let mline = model(
-        segment(l, 20, 1e10, 1e7, m, m * g, 0.1),
-        Support::Pinned,
-        Support::Free,
-        None,
-    );
-    let q: Vec<f64> = (0..mline.nodes())
-        .flat_map(|i| [mline.arc[i], 0.0, 0.0])
-        .collect();
-    let pl = Placement::new(&q);
+    let (mline, q, pl) = falling_pendulum(20);
     let dm = dynamic(&mline, &pl, &settings(-0.1, None));
     let (steps, dt) = (200, 0.002);
     let mut ws = DynWorkspace::new(&mline).expect("workspace");
