@@ -115,15 +115,21 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         // A results file of an earlier run is moved aside and deleted on another thread: truncating
         // a large file in place costs the filesystem as long as a short run's statics.
         let old = set_aside(&h5p);
+
         let rec = Recorder::create(&h5p, &st, &gauge_names, compress)?;
         old_file = old;
         rec
     };
-    // The static plot is drawn on the other core while the dynamics run (off the stepping path).
+    // The static plot is drawn on the other core while the dynamics run (off the stepping path),
+    // then the white canvases of the two large plots drawn after the run are made there.
     let static_plot = {
         let (path, title) = (out.join("static.png"), st.scene.title.clone());
         let (model, results) = (st.model.clone(), st.results.clone());
-        std::thread::spawn(move || plot::static_line(&path, &title, &model, &results))
+        std::thread::spawn(move || {
+            plot::static_line(&path, &title, &model, &results)?;
+            let dynamic = plot::Canvas::white(plot::DYNAMIC_SIZE);
+            Ok((dynamic, plot::Canvas::white(plot::RANGES_MAX_SIZE)))
+        })
     };
     let mut bar = ProgressBar::new();
     let mut cp = opts
@@ -158,16 +164,19 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let records = rec.records();
     let recording_seconds = rec.busy_seconds();
     let writer_seconds = rec.writer_seconds();
-    drop(rec);
     let t_outputs = Instant::now();
     let js = out.join("summary.json");
-    // The two large plots on threads of their own while this one writes the HDF5 datasets, the
-    // summary and the other plots.
+    let (dynamic_canvas, ranges_canvas) = joined(static_plot.join(), out)?;
+    // The two large plots on threads of their own while this one closes the recorder (its writer
+    // writes the last records), writes the HDF5 datasets, the summary and the other plots.
     let (drawn, written) = std::thread::scope(|scope| {
         let r = &r;
-        let dynamic = scope.spawn(move || plot::dynamic(&out.join("dynamic.png"), r));
-        let ranges = scope.spawn(move || plot::ranges(&out.join("ranges.png"), r));
+        let dynamic = scope
+            .spawn(move || plot::dynamic_on(&out.join("dynamic.png"), r, Some(dynamic_canvas)));
+        let ranges = scope
+            .spawn(move || plot::ranges_on(&out.join("ranges.png"), r, Some(ranges_canvas)));
         let written = (|| -> Result<(), AppError> {
+            drop(rec);
             h5::write_fatigue(&h5p, r)?;
             h5::write_design_check(&h5p, r)?;
             h5::write_ranges(&h5p, r)?;
@@ -181,7 +190,6 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     });
     drawn?;
     written?;
-    joined(static_plot.join(), out)?;
     if let Some(t) = old_file.take() {
         let _ = t.join();
     }
@@ -237,7 +245,7 @@ fn set_aside(path: &Path) -> Option<std::thread::JoinHandle<()>> {
 }
 
 /// A plotting thread's result: its error, or its panic as an error naming the output folder.
-fn joined(r: std::thread::Result<Result<(), AppError>>, out: &Path) -> Result<(), AppError> {
+fn joined<T>(r: std::thread::Result<Result<T, AppError>>, out: &Path) -> Result<T, AppError> {
     r.unwrap_or_else(|_| {
         Err(AppError::Plot {
             path: out.to_path_buf(),
