@@ -173,8 +173,8 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         let r = &r;
         let dynamic = scope
             .spawn(move || plot::dynamic_on(&out.join("dynamic.png"), r, Some(dynamic_canvas)));
-        let ranges = scope
-            .spawn(move || plot::ranges_on(&out.join("ranges.png"), r, Some(ranges_canvas)));
+        let ranges =
+            scope.spawn(move || plot::ranges_on(&out.join("ranges.png"), r, Some(ranges_canvas)));
         let written = (|| -> Result<(), AppError> {
             drop(rec);
             h5::write_fatigue(&h5p, r)?;

@@ -9,7 +9,7 @@ use catena::sweep::{Plan, PointSummary};
 use catena::AppError;
 use plotters::prelude::*;
 
-use crate::plot::{init_fonts, plot_err};
+use crate::plot::{init_fonts, pixels, plot_err, write_image};
 
 /// The number a parameter value stands for, if it is one.
 fn number(v: &toml::Value) -> Option<f64> {
@@ -95,123 +95,127 @@ pub fn figure(
         RGBColor(150, 80, 180),
         RGBColor(220, 140, 0),
     ];
-    let root = BitMapBackend::new(path, (1600, 700)).into_drawing_area();
-    root.fill(&WHITE).map_err(&err)?;
-    let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
-    let areas = root.split_evenly((1, 3));
-    let key = &plan.parameters[0].key;
-    type Pick = fn(&PointSummary) -> f64;
-    let panels: [(&str, &str, Pick, bool); 3] = [
-        (
-            "minimum fatigue life",
-            "life (years, log scale)",
-            |p| p.min_life_years,
-            true,
-        ),
-        (
-            "touchdown-zone moment range",
-            "largest moment range (kN·m)",
-            |p| p.tdz_moment_range / 1e3,
-            false,
-        ),
-        (
-            "largest penetration",
-            "penetration of the invert (m, positive down)",
-            |p| p.max_penetration,
-            false,
-        ),
-    ];
-    for (k, (caption, ydesc, pick, log_y)) in panels.into_iter().enumerate() {
-        let vals: Vec<f64> = points
-            .iter()
-            .filter(|p| p.failed.is_none())
-            .map(pick)
-            .filter(|v| v.is_finite() && (!log_y || *v > 0.0))
-            .collect();
-        if vals.is_empty() {
-            continue;
-        }
-        let (lo, hi) = vals
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(*x), b.max(*x))
-            });
-        let pad = if log_y {
-            0.0
-        } else {
-            0.08 * (hi - lo).max(hi.abs() * 0.05 + 1e-12)
-        };
-        let (xa, xb) = if log_x {
-            (x0 / 1.5, x1 * 1.5)
-        } else {
-            (x0 - 0.05 * (x1 - x0 + 1.0), x1 + 0.05 * (x1 - x0 + 1.0))
-        };
-        let mut b = ChartBuilder::on(&areas[k]);
-        b.caption(caption, ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(80);
-        let points_of = |pts: &Vec<&PointSummary>| -> Vec<(f64, f64)> {
-            pts.iter()
+    let size = (1600, 700);
+    let mut rgb = pixels(size, None);
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+        let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
+        let areas = root.split_evenly((1, 3));
+        let key = &plan.parameters[0].key;
+        type Pick = fn(&PointSummary) -> f64;
+        let panels: [(&str, &str, Pick, bool); 3] = [
+            (
+                "minimum fatigue life",
+                "life (years, log scale)",
+                |p| p.min_life_years,
+                true,
+            ),
+            (
+                "touchdown-zone moment range",
+                "largest moment range (kN·m)",
+                |p| p.tdz_moment_range / 1e3,
+                false,
+            ),
+            (
+                "largest penetration",
+                "penetration of the invert (m, positive down)",
+                |p| p.max_penetration,
+                false,
+            ),
+        ];
+        for (k, (caption, ydesc, pick, log_y)) in panels.into_iter().enumerate() {
+            let vals: Vec<f64> = points
+                .iter()
                 .filter(|p| p.failed.is_none())
-                .filter_map(|p| Some((number(&p.values[0])?, pick(p))))
-                .filter(|(_, y)| y.is_finite() && (!log_y || *y > 0.0))
-                .collect()
-        };
-        macro_rules! draw {
-            ($chart:expr) => {{
-                let mut chart = $chart;
-                chart
-                    .configure_mesh()
-                    .x_desc(key_label(key))
-                    .y_desc(ydesc)
-                    .x_label_formatter(&|v| short(*v))
-                    .y_label_formatter(&|v| short(*v))
-                    .light_line_style(WHITE)
-                    .draw()
-                    .map_err(|e| perr(e.to_string()))?;
-                for (j, (label, pts)) in series.iter().enumerate() {
-                    let c = colours[j % colours.len()];
-                    let xy = points_of(pts);
+                .map(pick)
+                .filter(|v| v.is_finite() && (!log_y || *v > 0.0))
+                .collect();
+            if vals.is_empty() {
+                continue;
+            }
+            let (lo, hi) = vals
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(*x), b.max(*x))
+                });
+            let pad = if log_y {
+                0.0
+            } else {
+                0.08 * (hi - lo).max(hi.abs() * 0.05 + 1e-12)
+            };
+            let (xa, xb) = if log_x {
+                (x0 / 1.5, x1 * 1.5)
+            } else {
+                (x0 - 0.05 * (x1 - x0 + 1.0), x1 + 0.05 * (x1 - x0 + 1.0))
+            };
+            let mut b = ChartBuilder::on(&areas[k]);
+            b.caption(caption, ("sans-serif", 20))
+                .margin(15)
+                .x_label_area_size(45)
+                .y_label_area_size(80);
+            let points_of = |pts: &Vec<&PointSummary>| -> Vec<(f64, f64)> {
+                pts.iter()
+                    .filter(|p| p.failed.is_none())
+                    .filter_map(|p| Some((number(&p.values[0])?, pick(p))))
+                    .filter(|(_, y)| y.is_finite() && (!log_y || *y > 0.0))
+                    .collect()
+            };
+            macro_rules! draw {
+                ($chart:expr) => {{
+                    let mut chart = $chart;
                     chart
-                        .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))
-                        .map_err(|e| perr(e.to_string()))?
-                        .label(if label.is_empty() {
-                            "catena".to_string()
-                        } else {
-                            label.clone()
-                        })
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                        });
-                    chart
-                        .draw_series(xy.iter().map(|&(x, y)| Circle::new((x, y), 4, c.filled())))
+                        .configure_mesh()
+                        .x_desc(key_label(key))
+                        .y_desc(ydesc)
+                        .x_label_formatter(&|v| short(*v))
+                        .y_label_formatter(&|v| short(*v))
+                        .light_line_style(WHITE)
+                        .draw()
                         .map_err(|e| perr(e.to_string()))?;
-                }
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(BLACK)
-                    .position(SeriesLabelPosition::UpperRight)
-                    .draw()
-                    .map_err(|e| perr(e.to_string()))?;
-            }};
-        }
-        match (log_x, log_y) {
-            (true, true) => draw!(b
-                .build_cartesian_2d((xa..xb).log_scale(), (lo / 2.0..hi * 2.0).log_scale())
-                .map_err(|e| perr(e.to_string()))?),
-            (true, false) => draw!(b
-                .build_cartesian_2d((xa..xb).log_scale(), lo - pad..hi + pad)
-                .map_err(|e| perr(e.to_string()))?),
-            (false, true) => draw!(b
-                .build_cartesian_2d(xa..xb, (lo / 2.0..hi * 2.0).log_scale())
-                .map_err(|e| perr(e.to_string()))?),
-            (false, false) => draw!(b
-                .build_cartesian_2d(xa..xb, lo - pad..hi + pad)
-                .map_err(|e| perr(e.to_string()))?),
+                    for (j, (label, pts)) in series.iter().enumerate() {
+                        let c = colours[j % colours.len()];
+                        let xy = points_of(pts);
+                        chart
+                            .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))
+                            .map_err(|e| perr(e.to_string()))?
+                            .label(if label.is_empty() {
+                                "catena".to_string()
+                            } else {
+                                label.clone()
+                            })
+                            .legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                            });
+                        chart
+                            .draw_series(
+                                xy.iter().map(|&(x, y)| Circle::new((x, y), 4, c.filled())),
+                            )
+                            .map_err(|e| perr(e.to_string()))?;
+                    }
+                    chart
+                        .configure_series_labels()
+                        .background_style(WHITE.mix(0.85))
+                        .border_style(BLACK)
+                        .position(SeriesLabelPosition::UpperRight)
+                        .draw()
+                        .map_err(|e| perr(e.to_string()))?;
+                }};
+            }
+            match (log_x, log_y) {
+                (true, true) => draw!(b
+                    .build_cartesian_2d((xa..xb).log_scale(), (lo / 2.0..hi * 2.0).log_scale())
+                    .map_err(|e| perr(e.to_string()))?),
+                (true, false) => draw!(b
+                    .build_cartesian_2d((xa..xb).log_scale(), lo - pad..hi + pad)
+                    .map_err(|e| perr(e.to_string()))?),
+                (false, true) => draw!(b
+                    .build_cartesian_2d(xa..xb, (lo / 2.0..hi * 2.0).log_scale())
+                    .map_err(|e| perr(e.to_string()))?),
+                (false, false) => draw!(b
+                    .build_cartesian_2d(xa..xb, lo - pad..hi + pad)
+                    .map_err(|e| perr(e.to_string()))?),
+            }
         }
     }
-    root.present().map_err(&err)?;
-    Ok(())
+    write_image(path, &rgb, size)
 }
