@@ -1181,6 +1181,7 @@ pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppE
         "least, greatest and mean of each quantity at each node over every step from `start`",
     )
     .map_err(&err)?;
+    let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
     for (name, range) in e.ranges() {
         let (units, what) = catena::observe::RANGE_QUANTITIES
             .iter()
@@ -1192,12 +1193,14 @@ pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppE
         vector(&q, "min", &range.min, units).map_err(&err)?;
         vector(&q, "max", &range.max, units).map_err(&err)?;
         vector(&q, "mean", &range.mean(e.samples), units).map_err(&err)?;
-        let dims: Vec<(String, Vec<Option<&str>>)> = ["min", "max", "mean"]
-            .iter()
-            .map(|w| (format!("ranges/{name}/{w}"), vec![Some("dynamic/arc")]))
-            .collect();
-        dimension_scales(&file, &dims).map_err(&err)?;
+        dims.extend(
+            ["min", "max", "mean"]
+                .iter()
+                .map(|w| (format!("ranges/{name}/{w}"), vec![Some("dynamic/arc")])),
+        );
     }
+    // Attached in one pass: `/dynamic/arc`'s list of uses rewritten once, not once per quantity.
+    dimension_scales(&file, &dims).map_err(&err)?;
     file.flush().map_err(&err)?;
     Ok(())
 }
