@@ -38,9 +38,12 @@ fn main() {
     }
     println!("cargo::rerun-if-changed={}", archive.display());
     println!("cargo::rustc-link-search=native={}", out.display());
-    // What the archive's objects call that the C library does not have: deflate and szip.
-    println!("cargo::rustc-link-lib=dylib=sz");
-    println!("cargo::rustc-link-lib=dylib=z");
+    // What the archive's objects call that the C library does not have: szip and deflate. As
+    // linker arguments (after the archive on the command line), so that every program of this
+    // package gets them: a `rustc-link-lib` would reach only the programs that link this
+    // package's library, and a test that uses HDF5 without it would find the archive but not these.
+    println!("cargo::rustc-link-arg=-lsz");
+    println!("cargo::rustc-link-arg=-lz");
 }
 
 /// The system's `libhdf5.a`, from the folder pkg-config gives for `hdf5`, when the shared
