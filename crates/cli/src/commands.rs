@@ -125,7 +125,9 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let static_plot = {
         let (path, title) = (out.join("static.png"), st.scene.title.clone());
         let (model, results) = (st.model.clone(), st.results.clone());
+        let created = rec.when_created(std::time::Duration::from_secs(1));
         std::thread::spawn(move || {
+            created();
             plot::static_line(&path, &title, &model, &results)?;
             let dynamic = plot::Canvas::white(plot::DYNAMIC_SIZE);
             Ok((dynamic, plot::Canvas::white(plot::RANGES_MAX_SIZE)))

@@ -335,6 +335,8 @@ pub struct Recorder {
     writer: Option<std::thread::JoinHandle<()>>,
     /// The writer's first error, if any.
     failed: Arc<Mutex<Option<String>>>,
+    /// Set (and waiters woken) when the writer thread has created the file, or failed to.
+    created: Arc<(Mutex<bool>, std::sync::Condvar)>,
     n: usize,
     chunk: usize,
     /// Records handed to the writer.
@@ -619,9 +621,11 @@ impl Recorder {
         } = shape;
         let chunk = 64;
         let failed = Arc::new(Mutex::new(None));
+        let created = Arc::new((Mutex::new(false), std::sync::Condvar::new()));
         let (jobs, rx) = mpsc::sync_channel::<Job>(QUEUE);
         let writer = {
             let (sink, failed) = (Arc::clone(&sink), Arc::clone(&failed));
+            let done = Arc::clone(&created);
             std::thread::Builder::new()
                 .name("catena-hdf5".into())
                 .spawn(move || {
@@ -640,6 +644,11 @@ impl Recorder {
                             Err(e) => *first() = Some(output_message(e)),
                         }
                     }
+                    *done
+                        .0
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner) = true;
+                    done.1.notify_all();
                     for job in rx {
                         // After a failure, jobs are dropped: the file keeps what was written.
                         // (The error lock is not held while writing: the run checks it.)
@@ -670,6 +679,7 @@ impl Recorder {
             jobs: Some(jobs),
             writer: Some(writer),
             failed,
+            created,
             n,
             chunk,
             queued: written,
@@ -729,6 +739,19 @@ impl Recorder {
             self.flush()?;
         }
         Ok(())
+    }
+
+    /// A call that returns once the writer thread has created the file (or failed to), at most
+    /// after `limit`: work that would compete with the file's creation for the cores waits on it.
+    pub fn when_created(&self, limit: Duration) -> impl FnOnce() + Send + 'static {
+        let created = Arc::clone(&self.created);
+        move || {
+            let (flag, cv) = &*created;
+            let guard = flag
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            let _ = cv.wait_timeout_while(guard, limit, |done| !*done);
+        }
     }
 
     /// The writer's first error, as an output error naming the file.
