@@ -102,7 +102,7 @@ pub(crate) fn pixels((width, height): (u32, u32), canvas: Option<Canvas>) -> Vec
 ///
 /// A `.png` is written with the fast deflate and the Paeth filter on every row: the same pixels
 /// as the image crate's default (the fast deflate with an adaptive filter tried row by row), in
-/// files 1–3 % larger, written in two thirds of the time (4.1 against 6.3 ms for the heave
+/// files 2–3 % larger, written in two thirds of the time (4.1 against 6.3 ms for the heave
 /// benchmark's `dynamic.png`, measured 2026-11-26). Any other extension goes to the image crate's
 /// encoder for it, as plotters would.
 pub(crate) fn write_image(

@@ -8,21 +8,14 @@ use catena::observe::{Observer, Records as RunRecords};
 use catena::run::RunOptions;
 use catena_io::animate::{animate, diameters, frame_records, Colour, Options, Records};
 
+mod common;
+
 fn heave_records(duration: f64) -> Records {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let case = root.join("cases/benchmarks/scr-heave.toml");
-    let scene = catena::statics::read_scene(&case).expect("the heave benchmark reads");
-    let files = catena::scene::DirResolver::beside(&case);
-    let scene = scene
-        .edited(
-            &[
-                catena::scene::edit::Edit::set("dynamic.duration", toml::Value::Float(duration)),
-                catena::scene::edit::Edit::set("dynamic.output_interval", toml::Value::Float(0.5)),
-                catena::scene::edit::Edit::set("dynamic.envelope_start", toml::Value::Float(0.0)),
-            ],
-            &files,
-        )
-        .expect("edits apply");
+    let scene = common::heave_scene(&[
+        ("dynamic.duration", duration),
+        ("dynamic.output_interval", 0.5),
+        ("dynamic.envelope_start", 0.0),
+    ]);
     let od = scene.model.node_od.clone();
     let mut rec = RunRecords::new();
     {

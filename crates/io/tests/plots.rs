@@ -7,21 +7,11 @@ use std::path::{Path, PathBuf};
 use catena::run::{DynamicRun, RunOptions};
 use catena_io::plot::{self, Canvas};
 
+mod common;
+
 /// 5 s of the heave benchmark, envelopes from the start.
 fn short_heave() -> DynamicRun {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let case = root.join("cases/benchmarks/scr-heave.toml");
-    let scene = catena::statics::read_scene(&case).expect("the heave benchmark reads");
-    let files = catena::scene::DirResolver::beside(&case);
-    let scene = scene
-        .edited(
-            &[
-                catena::scene::edit::Edit::set("dynamic.duration", toml::Value::Float(5.0)),
-                catena::scene::edit::Edit::set("dynamic.envelope_start", toml::Value::Float(0.0)),
-            ],
-            &files,
-        )
-        .expect("edits apply");
+    let scene = common::heave_scene(&[("dynamic.duration", 5.0), ("dynamic.envelope_start", 0.0)]);
     catena::run::simulate(scene, &mut [], RunOptions::default()).expect("the run completes")
 }
 

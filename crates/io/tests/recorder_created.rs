@@ -1,17 +1,15 @@
 //! `Recorder::when_created`: the call that `catena run`'s static plot waits on returns once the
 //! writer thread has created `results.h5`, long before its limit.
 
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 use catena_io::h5::Recorder;
 
+mod common;
+
 #[test]
 fn when_created_returns_once_the_writer_has_made_the_file() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let scene = catena::statics::read_scene(&root.join("cases/benchmarks/scr-heave.toml"))
-        .expect("the heave benchmark reads");
-    let st = catena::statics::solve(scene).expect("its statics");
+    let st = catena::statics::solve(common::heave_scene(&[])).expect("its statics");
     let dir = std::env::temp_dir().join(format!("catena-created-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scratch folder");
     let path = dir.join("results.h5");
