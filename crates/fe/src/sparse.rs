@@ -199,14 +199,14 @@ pub struct BandLdlt {
     /// factor's fill-in: zeroed before each factorisation; a line's pattern has none). Places above
     /// the skyline are never written by the scatter, so they stay zero.
     holes: Vec<usize>,
-    /// For a half-width of 5 whose every column holds exactly its skyline rows (a line's pattern):
-    /// where each column's values end in the pattern (one past its diagonal). Then
-    /// [`BandLdlt::factor`] copies the six values ending at each diagonal as one block into the
+    /// A half-width of 5 whose every column holds exactly its skyline rows (a line's pattern): then
+    /// [`BandLdlt::factor`] copies the six values ending at each diagonal (where each column's
+    /// values end in the pattern, `col_ptr[c + 1]`) as one block into the
     /// column, instead of scattering value by value through `map` (a third of the time of a
     /// factorisation: the map is one more array as large as the values). The places above a
     /// column's skyline then hold the previous column's last values, which the half-width-5
     /// kernels never read: they select by the skyline (`first`), never by a stored zero.
-    block_ends: Option<Vec<usize>>,
+    blocks: bool,
 }
 
 impl BandLdlt {
@@ -236,14 +236,14 @@ impl BandLdlt {
             let rows = &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]];
             rows.iter().copied().eq(first[c]..=c)
         });
-        let block_ends = (w == 5 && n > w && skyline_only).then(|| a.col_ptr[1..].to_vec());
+        let blocks = w == 5 && n > w && skyline_only;
         Self {
             w,
             band: vec![0.0; n * (w + 1)],
             map,
             first,
             holes,
-            block_ends,
+            blocks,
         }
     }
 
@@ -252,25 +252,24 @@ impl BandLdlt {
         for &h in &self.holes {
             self.band[h] = 0.0;
         }
-        match &self.block_ends {
-            Some(ends) => {
-                const W: usize = 5;
-                // The first W columns by the map (their places above the skyline stay zero: the
-                // general loops of the factorisation's head read them), the others in blocks.
-                let head = ends[W - 1];
-                for (v, &m) in a.values[..head].iter().zip(&self.map[..head]) {
-                    self.band[m] = *v;
-                }
-                for (col, &end) in self.band.chunks_exact_mut(W + 1).zip(ends).skip(W) {
-                    let block: &[f64; W + 1] =
-                        a.values[end - (W + 1)..end].try_into().expect("a block");
-                    col.copy_from_slice(block);
-                }
+        if self.blocks {
+            const W: usize = 5;
+            // Where each column's values end in the pattern (one past its diagonal).
+            let ends = &a.col_ptr[1..];
+            // The first W columns by the map (their places above the skyline stay zero: the
+            // general loops of the factorisation's head read them), the others in blocks.
+            let head = ends[W - 1];
+            for (v, &m) in a.values[..head].iter().zip(&self.map[..head]) {
+                self.band[m] = *v;
             }
-            None => {
-                for (v, &m) in a.values.iter().zip(&self.map) {
-                    self.band[m] = *v;
-                }
+            for (col, &end) in self.band.chunks_exact_mut(W + 1).zip(ends).skip(W) {
+                let block: &[f64; W + 1] =
+                    a.values[end - (W + 1)..end].try_into().expect("a block");
+                col.copy_from_slice(block);
+            }
+        } else {
+            for (v, &m) in a.values.iter().zip(&self.map) {
+                self.band[m] = *v;
             }
         }
         factor_dispatch(self.w, &self.first, &mut self.band)
@@ -767,7 +766,7 @@ mod tests {
             if ldlt.w != 5 {
                 continue;
             }
-            assert_eq!(ldlt.block_ends.is_some(), !holed, "{nodes} nodes");
+            assert_eq!(ldlt.blocks, !holed, "{nodes} nodes");
             // Factorised twice: the second time on the first's band.
             ldlt.factor(&a).expect("factor");
             ldlt.factor(&a).expect("factor");
