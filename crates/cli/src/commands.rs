@@ -115,7 +115,6 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
         // A results file of an earlier run is moved aside and deleted on another thread: truncating
         // a large file in place costs the filesystem as long as a short run's statics.
         let old = set_aside(&h5p);
-
         let rec = Recorder::create(&h5p, &st, &gauge_names, compress)?;
         old_file = old;
         rec

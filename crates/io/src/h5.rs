@@ -644,10 +644,7 @@ impl Recorder {
                             Err(e) => *first() = Some(output_message(e)),
                         }
                     }
-                    *done
-                        .0
-                        .lock()
-                        .unwrap_or_else(std::sync::PoisonError::into_inner) = true;
+                    *lock(&done.0) = true;
                     done.1.notify_all();
                     for job in rx {
                         // After a failure, jobs are dropped: the file keeps what was written.
@@ -747,10 +744,7 @@ impl Recorder {
         let created = Arc::clone(&self.created);
         move || {
             let (flag, cv) = &*created;
-            let guard = flag
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner);
-            let _ = cv.wait_timeout_while(guard, limit, |done| !*done);
+            let _ = cv.wait_timeout_while(lock(flag), limit, |done| !*done);
         }
     }
 
