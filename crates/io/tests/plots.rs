@@ -1,6 +1,7 @@
 //! The run's large plots drawn on canvases made ahead (`catena_io::plot::Canvas`) are the plots
 //! drawn on their own, pixel for pixel; the PNG encoder's files decode to those pixels; another
-//! extension still goes to the image crate's encoder for it.
+//! extension still goes to the image crate's encoder for it; the opaque grid is plotters' default
+//! translucent grid as it looks on white.
 
 use std::path::{Path, PathBuf};
 
@@ -74,4 +75,38 @@ fn other_extensions_go_to_their_own_encoder_and_unknown_ones_are_refused() {
             .contains("cannot write the image: No such file or directory"),
         "{e}"
     );
+}
+
+/// `plot::GRID_BOLD` and `plot::GRID_LIGHT` are what plotters' default grid lines (black at 20 %
+/// and 10 % opacity) blend to on a white canvas, along a row and down a column (the two ways a
+/// line is blended), within the one level by which those two ways round differently.
+#[test]
+fn the_opaque_grid_is_the_default_translucent_grid_on_white() {
+    use plotters::prelude::*;
+    for (grey, alpha) in [(plot::GRID_BOLD, 0.2), (plot::GRID_LIGHT, 0.1)] {
+        let (w, h) = (40u32, 40u32);
+        let mut px = vec![255u8; 3 * (w * h) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut px, (w, h)).into_drawing_area();
+            let style = BLACK.mix(alpha);
+            root.draw(&PathElement::new(vec![(0, 10), (39, 10)], style))
+                .expect("a row");
+            root.draw(&PathElement::new(vec![(30, 0), (30, 39)], style))
+                .expect("a column");
+            root.present().expect("drawn");
+        }
+        let at = |x: u32, y: u32| px[3 * (y * w + x) as usize];
+        for (x, y) in [(0, 10), (5, 10), (20, 10), (30, 3), (30, 30)] {
+            let level = at(x, y);
+            assert!(
+                (i32::from(level) - i32::from(grey.0)).abs() <= 1,
+                "alpha {alpha}: the line at ({x}, {y}) is {level} on white, the opaque grey {}",
+                grey.0
+            );
+            assert_eq!((grey.0, grey.1), (grey.1, grey.2), "a grey");
+        }
+        // Where the two translucent lines cross, the pixel is darker than either (the opaque grid
+        // draws it in the one grey).
+        assert!(at(30, 10) < at(20, 10));
+    }
 }
