@@ -10,7 +10,7 @@ use catena::AppError;
 use plotters::prelude::*;
 use serde_json::json;
 
-use crate::plot::{init_fonts, pixels, plot_err, write_image, GRID_BOLD, GRID_LIGHT};
+use crate::plot::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
 
 /// The table as CSV: a row per run; per output its value and its error (mesh series or Δt series).
 pub fn csv(st: &Study) -> String {
@@ -283,8 +283,7 @@ pub fn plot(path: &Path, st: &Study) -> Result<(), AppError> {
                 .map_err(&err)?;
             chart
                 .configure_mesh()
-                .bold_line_style(GRID_BOLD)
-                .light_line_style(GRID_LIGHT)
+                .opaque_grid()
                 .x_desc("wall time of the run (s)")
                 .y_desc("|error| (%)")
                 .x_labels(6)

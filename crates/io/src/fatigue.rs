@@ -13,7 +13,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use serde_json::{json, Value};
 
 use crate::h5::{attr, h5err, vector};
-use crate::plot::{init_fonts, pixels, plot_err, write_image, GRID_BOLD, GRID_LIGHT};
+use crate::plot::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
 
 /// The study's numbers, per fibre: annual damage and life at every node.
 #[derive(Debug, Clone)]
@@ -210,8 +210,7 @@ pub fn life_png(
                 .map_err(|e| perr(e.to_string()))?;
             chart
                 .configure_mesh()
-                .bold_line_style(GRID_BOLD)
-                .light_line_style(GRID_LIGHT)
+                .opaque_grid()
                 .x_desc("arc length from the top (m)")
                 .y_desc("fatigue life (years)")
                 .y_label_formatter(&|v| format!("{v:.0e}"))
@@ -269,8 +268,7 @@ pub fn storms_png(path: &Path, shares: &[(i64, f64)], title: &str) -> Result<(),
             .map_err(|e| perr(e.to_string()))?;
         chart
             .configure_mesh()
-            .bold_line_style(GRID_BOLD)
-            .light_line_style(GRID_LIGHT)
+            .opaque_grid()
             .disable_x_mesh()
             .x_desc("storm id (in the table's order)")
             .y_desc("share of the damage at the critical point (%)")

@@ -86,6 +86,23 @@ pub const GRID_BOLD: RGBColor = RGBColor(204, 204, 204);
 /// The grid's minor lines: black at 10 % opacity on white, drawn opaque (see [`GRID_BOLD`]).
 pub const GRID_LIGHT: RGBColor = RGBColor(230, 230, 230);
 
+/// A chart's grid in [`GRID_BOLD`] and [`GRID_LIGHT`]: `chart.configure_mesh().opaque_grid()`.
+pub trait OpaqueGrid {
+    /// Sets the grid's major and minor lines to the opaque greys.
+    fn opaque_grid(&mut self) -> &mut Self;
+}
+
+impl<X, Y, DB> OpaqueGrid for plotters::chart::MeshStyle<'_, '_, X, Y, DB>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+    DB: DrawingBackend,
+{
+    fn opaque_grid(&mut self) -> &mut Self {
+        self.bold_line_style(GRID_BOLD).light_line_style(GRID_LIGHT)
+    }
+}
+
 /// The size of [`dynamic`]'s plot.
 pub const DYNAMIC_SIZE: (u32, u32) = (1800, 1500);
 
@@ -241,8 +258,7 @@ pub fn soil_test(
             .map_err(&err)?;
         chart
             .configure_mesh()
-            .bold_line_style(GRID_BOLD)
-            .light_line_style(GRID_LIGHT)
+            .opaque_grid()
             .x_desc("P/D (kPa)  (positive: resistance, negative: suction)")
             .y_desc("penetration z/D (down)")
             .y_label_formatter(&|v| format!("{:.2}", -v + 0.0))
@@ -361,8 +377,7 @@ pub fn soil_test(
                 .build_cartesian_2d(0.0..n + 1.0, ya..yb)
                 .map_err(&err)?;
             c2.configure_mesh()
-                .bold_line_style(GRID_BOLD)
-                .light_line_style(GRID_LIGHT)
+                .opaque_grid()
                 .x_desc("cycle")
                 .y_desc("cumulative penetration since the first cycle, Δz/D")
                 .label_style(("sans-serif", 16))
@@ -463,8 +478,7 @@ fn framed_chart_sized<'a, DB: DrawingBackend>(
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .bold_line_style(GRID_BOLD)
-        .light_line_style(GRID_LIGHT)
+        .opaque_grid()
         .x_desc(xlabel)
         .y_desc(ylabel)
         .label_style(("sans-serif", 14))

@@ -9,7 +9,7 @@ use catena::sweep::{Plan, PointSummary};
 use catena::AppError;
 use plotters::prelude::*;
 
-use crate::plot::{init_fonts, pixels, plot_err, write_image, GRID_BOLD};
+use crate::plot::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
 
 /// The number a parameter value stands for, if it is one.
 fn number(v: &toml::Value) -> Option<f64> {
@@ -169,7 +169,7 @@ pub fn figure(
                         .y_desc(ydesc)
                         .x_label_formatter(&|v| short(*v))
                         .y_label_formatter(&|v| short(*v))
-                        .bold_line_style(GRID_BOLD)
+                        .opaque_grid()
                         .light_line_style(WHITE)
                         .draw()
                         .map_err(|e| perr(e.to_string()))?;

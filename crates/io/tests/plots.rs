@@ -84,6 +84,7 @@ fn other_extensions_go_to_their_own_encoder_and_unknown_ones_are_refused() {
 fn the_opaque_grid_is_the_default_translucent_grid_on_white() {
     use plotters::prelude::*;
     for (grey, alpha) in [(plot::GRID_BOLD, 0.2), (plot::GRID_LIGHT, 0.1)] {
+        assert_eq!((grey.0, grey.1), (grey.1, grey.2), "a grey");
         let (w, h) = (40u32, 40u32);
         let mut px = vec![255u8; 3 * (w * h) as usize];
         {
@@ -103,7 +104,6 @@ fn the_opaque_grid_is_the_default_translucent_grid_on_white() {
                 "alpha {alpha}: the line at ({x}, {y}) is {level} on white, the opaque grey {}",
                 grey.0
             );
-            assert_eq!((grey.0, grey.1), (grey.1, grey.2), "a grey");
         }
         // Where the two translucent lines cross, the pixel is darker than either (the opaque grid
         // draws it in the one grey).
