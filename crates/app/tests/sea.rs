@@ -209,6 +209,8 @@ fn sampled_kinematics_are_the_exact_ones_within_1e_4() {
         r.fatigue
             .as_ref()
             .expect("fatigue")
+            .counting()
+            .expect("counted")
             .damage
             .iter()
             .cloned()
