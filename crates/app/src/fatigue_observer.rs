@@ -6,7 +6,8 @@
 //! **Off the stepping thread.** On a machine with more than one core the counting runs on a thread
 //! of its own: the observer copies each counted step's effective tension, moment and height at every
 //! node (`3·n` numbers) into a batch, and hands the thread a batch every [`BATCH_STEPS`] steps
-//! (at most [`BATCHES_IN_FLIGHT`] waiting: a run never gets ahead of its counting by more). The
+//! (fewer on a line so long that a batch would pass [`BATCH_VALUES`] numbers), at most
+//! [`BATCHES_IN_FLIGHT`] of them waiting: a run never gets ahead of its counting by more. The
 //! thread computes the same stresses from the same numbers and pushes them into the same counters
 //! in the same order, so the damage is the same to the bit as counted on the stepping thread (tested).
 //! `finish` and `save` (a checkpoint) wait for the thread to count every step handed to it and
@@ -24,8 +25,12 @@ use crate::fatigue::stress::Fibre;
 use crate::fatigue::FatigueSpec;
 use crate::observe::{Control, Observer, RunContext, StepView, Stop};
 
-/// Counted steps handed to the counting thread at a time.
+/// Counted steps handed to the counting thread at a time, at most.
 pub const BATCH_STEPS: usize = 64;
+
+/// Numbers in a batch, at most (1 MiB): a line of more than 682 nodes hands over fewer steps at a
+/// time.
+pub const BATCH_VALUES: usize = 1 << 17;
 
 /// Batches handed to the counting thread and not yet counted, at most.
 pub const BATCHES_IN_FLIGHT: usize = 4;
@@ -48,6 +53,8 @@ pub struct Fatigue {
     threaded: bool,
     /// The batch being filled: per counted step, the tension, moment and height at every node.
     batch: Vec<f64>,
+    /// Numbers in a full batch: `3·n` per step, [`BATCH_STEPS`] steps or fewer.
+    batch_len: usize,
     n: usize,
 }
 
@@ -220,6 +227,7 @@ impl Fatigue {
             thread: None,
             threaded,
             batch: Vec::new(),
+            batch_len: 3 * n * (BATCH_VALUES / (3 * n).max(1)).clamp(1, BATCH_STEPS),
             n,
         }
     }
@@ -240,12 +248,12 @@ impl Fatigue {
             return Ok(());
         }
         if self.batch.capacity() == 0 {
-            self.batch.reserve_exact(BATCH_STEPS * 3 * n);
+            self.batch.reserve_exact(self.batch_len);
         }
         self.batch.extend_from_slice(tension);
         self.batch.extend_from_slice(moment);
         self.batch.extend_from_slice(z);
-        if self.batch.len() == BATCH_STEPS * 3 * n {
+        if self.batch.len() >= self.batch_len {
             self.hand_over()?;
         }
         Ok(())
@@ -266,7 +274,7 @@ impl Fatigue {
             Ok(back) => back.try_recv().ok(),
             Err(_) => None,
         };
-        let next = reused.unwrap_or_else(|| Vec::with_capacity(BATCH_STEPS * 3 * self.n));
+        let next = reused.unwrap_or_else(|| Vec::with_capacity(self.batch_len));
         let full = std::mem::replace(&mut self.batch, next);
         if t.batches.send(full).is_err() {
             // The thread has ended, which only a panic makes it do: `drain` reports it.
