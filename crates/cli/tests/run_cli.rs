@@ -576,6 +576,7 @@ fn fatigue_observer_equals_counting_the_records() {
 /// is drawn. A run stopped at step 120 and restarted from its step-111 checkpoint into the same
 /// directory ends with the same utilisation records and per-node results to the bit. With
 /// `[extremes]`: the same after the restart, and `catena extremes results.h5` gives the run's own.
+/// With `[fatigue]` (two fibres, from 1 s): the damage the same after the restart.
 #[test]
 fn design_check_is_recorded_and_restarts_bit_for_bit() {
     let dir = tmp("design");
@@ -589,7 +590,7 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
             )
             .edit("duration = 100.0", "duration = 10.0")
             .edit("envelope_start = 50.0", "envelope_start = 2.0")
-            + "\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n\n[extremes]\nstart = 2.0\nblock = 1.0\ntarget_duration = 600.0\n",
+            + "\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n\n[extremes]\nstart = 2.0\nblock = 1.0\ntarget_duration = 600.0\n\n[fatigue]\nsn_curve = \"dnv-e-seawater-cp\"\nscf = 1.2\nfibres = [\"outer\", \"inner\"]\nstart = 1.0\n",
     )
     .expect("case");
     let (full, cut) = (dir.join("full"), dir.join("cut"));
@@ -641,6 +642,22 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
             read(&full, name) == read(&cut, name),
             "{name} after restart"
         );
+    }
+    // The fatigue damage (counted on its own thread, drained into each checkpoint and restored
+    // from the one at step 111): the same to the bit.
+    let fatigue = |dir: &Path, fibre: &str| -> Vec<f64> {
+        hdf5::File::open(dir.join("results.h5"))
+            .expect("h5")
+            .dataset(&format!("fatigue/damage_{fibre}"))
+            .unwrap_or_else(|e| panic!("damage_{fibre}: {e}"))
+            .read_raw::<f64>()
+            .expect("data")
+    };
+    for fibre in ["outer", "inner"] {
+        let d = fatigue(&full, fibre);
+        assert_eq!(d.len(), 401);
+        assert!(d.iter().any(|x| *x > 0.0), "{fibre}: no damage counted");
+        assert!(d == fatigue(&cut, fibre), "{fibre} damage after restart");
     }
     let s = summary(&full);
     let c = &s["design_check"];
