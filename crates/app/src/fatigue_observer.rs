@@ -12,6 +12,7 @@
 //! in the same order, so the damage is the same to the bit as counted on the stepping thread (tested).
 //! `finish` and `save` (a checkpoint) wait for the thread to count every step handed to it and
 //! take the counters back; the next counted step starts a new thread.
+
 use std::sync::{mpsc, Mutex};
 use std::thread::JoinHandle;
 
