@@ -615,14 +615,15 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
         },
     )
     .expect("restarted");
-    let read = |dir: &Path, name: &str| -> Vec<f64> {
+    let dataset = |dir: &Path, path: &str| -> Vec<f64> {
         hdf5::File::open(dir.join("results.h5"))
             .expect("h5")
-            .dataset(&format!("design_check/{name}"))
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            .dataset(path)
+            .unwrap_or_else(|e| panic!("{path}: {e}"))
             .read_raw::<f64>()
             .expect("data")
     };
+    let read = |dir: &Path, name: &str| dataset(dir, &format!("design_check/{name}"));
     let u = read(&full, "utilisation");
     let umax = read(&full, "utilisation_max");
     let n = umax.len();
@@ -645,14 +646,7 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
     }
     // The fatigue damage (counted on its own thread, drained into each checkpoint and restored
     // from the one at step 111): the same to the bit.
-    let fatigue = |dir: &Path, fibre: &str| -> Vec<f64> {
-        hdf5::File::open(dir.join("results.h5"))
-            .expect("h5")
-            .dataset(&format!("fatigue/damage_{fibre}"))
-            .unwrap_or_else(|e| panic!("damage_{fibre}: {e}"))
-            .read_raw::<f64>()
-            .expect("data")
-    };
+    let fatigue = |dir: &Path, fibre: &str| dataset(dir, &format!("fatigue/damage_{fibre}"));
     for fibre in ["outer", "inner"] {
         let d = fatigue(&full, fibre);
         assert_eq!(d.len(), 401);
