@@ -210,17 +210,9 @@ impl Range {
         }
     }
 
-    /// Takes one step's values, one per node (a loop per array, which the compiler vectorises).
+    /// Takes one step's values, one per node ([`take_range`]).
     fn take(&mut self, v: &[f64]) {
-        for (m, x) in self.min.iter_mut().zip(v) {
-            *m = m.min(*x);
-        }
-        for (m, x) in self.max.iter_mut().zip(v) {
-            *m = m.max(*x);
-        }
-        for (m, x) in self.sum.iter_mut().zip(v) {
-            *m += *x;
-        }
+        take_range(&mut self.min, &mut self.max, &mut self.sum, v);
     }
 
     /// `max − min` per node.
@@ -437,7 +429,7 @@ impl Envelopes {
             let [w, t, b] = &mut self.section_scratch;
             // One section (a constant of the loop) or each node's own.
             if self.node_sections.is_empty() {
-                wall_stresses(s, |_| sec, [w, t, b]);
+                wall_stresses_one(s, sec, [w, t, b]);
             } else {
                 let per_node = &self.node_sections;
                 wall_stresses(s, |i| &per_node[i], [w, t, b]);
@@ -448,6 +440,33 @@ impl Envelopes {
         }
         self.samples += 1;
     }
+}
+
+/// Takes one step's values into a range graph's least, greatest and summed values, one per node: a
+/// loop per array, which the compiler vectorises, compiled also for AVX2 and AVX-512 and chosen at
+/// run time (each node's own minimum, maximum and sum: the same values to the bit on every
+/// processor).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn take_range(min: &mut [f64], max: &mut [f64], sum: &mut [f64], v: &[f64]) {
+    for (m, x) in min.iter_mut().zip(v) {
+        *m = m.min(*x);
+    }
+    for (m, x) in max.iter_mut().zip(v) {
+        *m = m.max(*x);
+    }
+    for (m, x) in sum.iter_mut().zip(v) {
+        *m += *x;
+    }
+}
+
+/// [`wall_stresses`] with one section for every node, compiled as [`take_range`] is.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn wall_stresses_one(
+    s: &LineResults,
+    sec: &crate::fatigue::stress::PipeSection,
+    out: [&mut Vec<f64>; 3],
+) {
+    wall_stresses(s, |_| sec, out);
 }
 
 /// Each node's wall tension and outer-fibre stresses (top, bottom) into `w`, `t`, `b`, with node
