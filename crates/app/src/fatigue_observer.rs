@@ -41,9 +41,6 @@ pub const BATCHES_IN_FLIGHT: usize = 4;
 pub struct Fatigue {
     /// The specification.
     pub spec: FatigueSpec,
-    /// The factor on every stress range of the specification's own section and curve: SCF ×
-    /// thickness correction (a line of sections has one per node, [`Counting::node_factor`]).
-    pub factor: f64,
     /// First and last time counted, s.
     pub span: (Option<f64>, f64),
     /// The counting; `None` while the counting thread holds it.
@@ -197,7 +194,7 @@ impl Fatigue {
     /// The observer for `n` nodes, counting on a thread of its own (`threaded`) or on the stepping
     /// thread.
     pub fn with_thread(spec: FatigueSpec, n: usize, threaded: bool) -> Self {
-        let factor = spec.scf * spec.curve.thickness_factor(spec.section.wall);
+        let factor = range_factor(&spec);
         let m = n * spec.fibres.len() * 2;
         let node = |i: usize| {
             spec.nodes
@@ -222,7 +219,6 @@ impl Fatigue {
         };
         Self {
             spec,
-            factor,
             span: (None, 0.0),
             counting: Some(counting),
             thread: None,
@@ -306,6 +302,12 @@ impl Fatigue {
         Ok(())
     }
 
+    /// The factor on every stress range of the specification's own section and curve: SCF ×
+    /// thickness correction (a line of sections has one per node, [`Counting::node_factor`]).
+    pub fn factor(&self) -> f64 {
+        range_factor(&self.spec)
+    }
+
     /// The counting (each node's curve and factor, the damage): `None` during a run while its
     /// thread holds it (`finish` and `save` take it back).
     pub fn counting(&self) -> Option<&Counting> {
@@ -332,6 +334,11 @@ impl Fatigue {
     pub fn counted_seconds(&self) -> f64 {
         self.span.0.map_or(0.0, |a| self.span.1 - a)
     }
+}
+
+/// SCF × thickness correction of the specification's own section and curve.
+fn range_factor(spec: &FatigueSpec) -> f64 {
+    spec.scf * spec.curve.thickness_factor(spec.section.wall)
 }
 
 /// The counting is neither here nor on a thread: cannot happen (each path that lends it takes it
@@ -463,7 +470,7 @@ mod tests {
         let want = cycles as f64 * (factor * range).powi(3) / 10f64.powf(11.533);
         let got = f.damage_of(Fibre::Outer).expect("outer")[0];
         println!("range {range:.3} MPa, damage {got:.6e} (by hand {want:.6e})");
-        assert!((f.factor - factor).abs() < 1e-12, "{}", f.factor);
+        assert!((f.factor() - factor).abs() < 1e-12, "{}", f.factor());
         assert!((got / want - 1.0).abs() < 1e-9, "{got} against {want}");
     }
 
@@ -546,10 +553,6 @@ mod tests {
                 .map(|x| x.to_bits())
                 .collect()
         };
-        println!(
-            "damage at node 0, outer top: {:.6e}",
-            a.as_ref().expect("c").damage[0]
-        );
         assert!(a.as_ref().expect("c").damage.iter().all(|x| *x > 0.0));
         assert_eq!(bits(a), bits(b), "threaded against the stepping thread");
         assert_eq!(bits(a), bits(c), "saved, restored and counted on");

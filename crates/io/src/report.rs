@@ -459,7 +459,7 @@ pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue_observer::Fatigue) -> Va
     json!({
         "sn_curve": f.spec.curve_name,
         "scf": f.spec.scf,
-        "thickness_factor": f.factor / f.spec.scf,
+        "thickness_factor": f.factor() / f.spec.scf,
         "start": f.spec.start,
         "counted_seconds": secs,
         "fibres": fibres,
