@@ -34,6 +34,17 @@
 //! general loops to the bit by `unrolled_band_is_the_general_band_to_the_bit`. faer's LDLᵀ serves
 //! patterns wider than a band (held to the band to rounding by `band_and_sparse_agree`).
 //!
+//! **From both ends.** A line of at least [`TWIST_MIN`] equations is factorised from both ends at
+//! once ([`factor_twisted5`], the "twisted" or "burn at both ends" order of tridiagonal solvers):
+//! the equations `0..m` top-down as above, `m+5..n` bottom-up by the same recurrence on the
+//! reversed order, and the five in the middle from their Schur complement; the solve sweeps from
+//! both ends to the middle and back. Each column's recurrence is a chain of dependent operations
+//! (the division by the last pivot, then the next pivot's update; each unknown of a sweep from
+//! the one before it) that leaves the processor waiting; two independent chains in one loop
+//! overlap. The same operations, another order: the solution agrees with the top-down one to
+//! rounding (`twisted_band_is_the_band_to_rounding`), not to the bit. Measured on 2577 equations:
+//! the factorisation 27.0 → 24.5 µs, a solve 10.1 → 7.6 µs (`benches/README.md`).
+//!
 //! Only the upper triangle is stored and passed with `Side::Upper`: faer reads the triangle the side
 //! names, and this is the combination tested to give the right answer for every ordering.
 
@@ -207,7 +218,21 @@ pub struct BandLdlt {
     /// column's skyline then hold the previous column's last values, which the half-width-5
     /// kernels never read: they select by the skyline (`first`), never by a stored zero.
     blocks: bool,
+    /// Factorised from both ends ([`factor_twisted5`]): `Some(m)`, the first of the five middle
+    /// equations `m..m+5`, for a line's pattern (`blocks`, each column's first row nondecreasing)
+    /// of at least [`TWIST_MIN`] equations; `None`: top-down.
+    twist: Option<usize>,
+    /// The places in `band` above each column's skyline from column 5 on (twisted only): zeroed
+    /// after the block copy, so that the twisted kernels multiply by zero where the top-down ones
+    /// select.
+    above: Vec<usize>,
+    /// The twisted factorisation's middle block `m..m+5`, densely: `L_ca` at `[5a + c]` (`a < c`),
+    /// `D_c` at `[6c]`.
+    middle: Box<[f64; 25]>,
 }
+
+/// The fewest equations of a line's band factorised from both ends ([`factor_twisted5`]).
+pub const TWIST_MIN: usize = 40;
 
 impl BandLdlt {
     /// The band layout of `a`'s pattern.
@@ -237,6 +262,15 @@ impl BandLdlt {
             rows.iter().copied().eq(first[c]..=c)
         });
         let blocks = w == 5 && n > w && skyline_only;
+        let nondecreasing = first.windows(2).all(|p| p[0] <= p[1]);
+        let twist = (blocks && nondecreasing && n >= TWIST_MIN).then_some((n - 5) / 2);
+        let above = if twist.is_some() {
+            (w..n)
+                .flat_map(|c| (c - w..first[c]).map(move |r| c * (w + 1) + (r + w - c)))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Self {
             w,
             band: vec![0.0; n * (w + 1)],
@@ -244,6 +278,9 @@ impl BandLdlt {
             first,
             holes,
             blocks,
+            twist,
+            above,
+            middle: Box::new([0.0; 25]),
         }
     }
 
@@ -272,12 +309,21 @@ impl BandLdlt {
                 self.band[m] = *v;
             }
         }
-        factor_dispatch(self.w, &self.first, &mut self.band)
+        for &h in &self.above {
+            self.band[h] = 0.0;
+        }
+        match self.twist {
+            Some(m) => factor_twisted_dispatch(&self.first, &mut self.band, m, &mut self.middle),
+            None => factor_dispatch(self.w, &self.first, &mut self.band),
+        }
     }
 
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&self, x: &mut [f64]) {
-        solve_dispatch(self.w, &self.first, &self.band, x)
+        match self.twist {
+            Some(m) => solve_twisted_dispatch(&self.first, &self.band, m, &self.middle, x),
+            None => solve_dispatch(self.w, &self.first, &self.band, x),
+        }
     }
 }
 
@@ -336,41 +382,50 @@ fn factor_band5(first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
     let head = n.min(W);
     factor_columns_dyn(first, W, band, 0..head)?;
     for j in head..n {
-        let lo = first[j];
-        let (before, rest) = band.split_at_mut(j * (W + 1));
-        let col: &mut [f64; W + 1] = (&mut rest[..W + 1]).try_into().expect("column");
-        // Columns j−5..j−1; row k = j−5+b of column i = j−5+a is cols[6a + 5 + b − a].
-        let cols: &[f64; W * (W + 1)] = before[(j - W) * (W + 1)..].try_into().expect("columns");
-        let fi: &[usize; W] = first[j - W..j].try_into().expect("firsts");
-        let mut c = *col;
-        for a in 0..W {
-            let i = j - W + a;
-            let klo = lo.max(fi[a]);
-            let mut t = c[a];
-            for b in 0..a {
-                // A product outside the skyline subtracts +0: exactly nothing.
-                t -= if j - W + b >= klo {
-                    cols[a * (W + 1) + W + b - a] * c[b]
-                } else {
-                    0.0
-                };
-            }
-            c[a] = if i >= lo { t } else { c[a] };
-        }
-        let mut d = c[W];
-        for a in 0..W {
-            let t = c[a];
-            let l = t / cols[a * (W + 1) + W];
-            let keep = j - W + a >= lo; // row i = j−5+a is in the skyline
-            d -= if keep { l * t } else { 0.0 };
-            c[a] = if keep { l } else { t };
-        }
-        if d == 0.0 || !d.is_finite() {
-            return Err(SolveError::Singular { equation: j });
-        }
-        c[W] = d;
-        *col = c;
+        top_column5(first, band, j)?;
     }
+    Ok(())
+}
+
+/// Column `j ≥ 5` of [`factor_band5`]: `L_ji` for the rows `i` of its skyline and `D_j`, from
+/// the five columns before it.
+#[inline(always)]
+fn top_column5(first: &[usize], band: &mut [f64], j: usize) -> Result<(), SolveError> {
+    const W: usize = 5;
+    let lo = first[j];
+    let (before, rest) = band.split_at_mut(j * (W + 1));
+    let col: &mut [f64; W + 1] = (&mut rest[..W + 1]).try_into().expect("column");
+    // Columns j−5..j−1; row k = j−5+b of column i = j−5+a is cols[6a + 5 + b − a].
+    let cols: &[f64; W * (W + 1)] = before[(j - W) * (W + 1)..].try_into().expect("columns");
+    let fi: &[usize; W] = first[j - W..j].try_into().expect("firsts");
+    let mut c = *col;
+    for a in 0..W {
+        let i = j - W + a;
+        let klo = lo.max(fi[a]);
+        let mut t = c[a];
+        for b in 0..a {
+            // A product outside the skyline subtracts +0: exactly nothing.
+            t -= if j - W + b >= klo {
+                cols[a * (W + 1) + W + b - a] * c[b]
+            } else {
+                0.0
+            };
+        }
+        c[a] = if i >= lo { t } else { c[a] };
+    }
+    let mut d = c[W];
+    for a in 0..W {
+        let t = c[a];
+        let l = t / cols[a * (W + 1) + W];
+        let keep = j - W + a >= lo; // row i = j−5+a is in the skyline
+        d -= if keep { l * t } else { 0.0 };
+        c[a] = if keep { l } else { t };
+    }
+    if d == 0.0 || !d.is_finite() {
+        return Err(SolveError::Singular { equation: j });
+    }
+    c[W] = d;
+    *col = c;
     Ok(())
 }
 
@@ -434,6 +489,380 @@ fn solve_band5(first: &[usize], band: &[f64], x: &mut [f64]) {
         x[i] = s;
         (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
     }
+}
+
+/// [`factor_twisted5`], compiled for the baseline processor only: compiled for AVX2 or AVX-512
+/// the compiler packs the two ends' scalar recurrences into vectors, and the shuffles between them
+/// lengthen the very chains that the two ends are there to overlap (2577 equations, the copy into
+/// the band included: 24.5 µs for the baseline, 29.8 µs for AVX-512, against 27.0 µs top-down;
+/// `benches/README.md`). The values are the same either way: no fused multiply-adds.
+fn factor_twisted_dispatch(
+    first: &[usize],
+    band: &mut [f64],
+    m: usize,
+    middle: &mut [f64; 25],
+) -> Result<(), SolveError> {
+    factor_twisted5(first, band, m, middle)
+}
+
+/// [`solve_twisted5`] compiled as [`factor_dispatch`] is.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn solve_twisted_dispatch(
+    first: &[usize],
+    band: &[f64],
+    m: usize,
+    middle: &[f64; 25],
+    x: &mut [f64],
+) {
+    solve_twisted5(first, band, m, middle, x)
+}
+
+/// Row `i` of column `l` (`l − 5 ≤ i ≤ l`) in the band.
+#[inline(always)]
+fn at(i: usize, l: usize) -> usize {
+    l * 6 + 5 + i - l
+}
+
+/// The twisted ("burn at both ends") LDLᵀ of a line's half-width-5 band, `P A Pᵀ = L D Lᵀ` in the
+/// elimination order `0, 1, …, m−1`, then `n−1, n−2, …, m+5`, then the middle `m, …, m+4`:
+///
+/// - the top equations `j < m` as [`factor_band5`] does (`L_ji` in column `j`, `i < j`);
+/// - the bottom equations `i ≥ m+5` from the last one up, the same recurrence on the reversed
+///   order: `t_l = A_il − Σ_{k>l} U_lk t_k` for the equations `l = i+5 … i+1` eliminated before
+///   `i`, `U_il = t_l / D_l`, `D_i = A_ii − Σ_l U_il t_l`, `U_il` in place of `A_il` (row `i` of
+///   column `l`);
+/// - the middle five from their Schur complement `S = A_MM − Σ_top L D Lᵀ − Σ_bottom U D Uᵀ`,
+///   densely (`middle`).
+///
+/// The two ends are independent until the middle, and their columns are computed in the same loop:
+/// each column's recurrence is a chain of dependent operations (the division by the last pivot,
+/// then the pivot's update) that one end alone leaves the processor waiting on, and two ends
+/// overlap. The same operations' count as top-down, a different order: the factor, and the
+/// solution, agree with [`factor_band5`]'s to rounding (`twisted_band_is_the_band_to_rounding`).
+/// The band's rows are the line's skyline (each column's `first` nondecreasing: the rows of row
+/// `i`'s band beyond the diagonal are then `i+1 ..= last` with no gap, and neither end fills in
+/// outside them); a place outside the skyline holds whatever it held and is never read.
+#[inline(always)]
+fn factor_twisted5(
+    first: &[usize],
+    band: &mut [f64],
+    m: usize,
+    middle: &mut [f64; 25],
+) -> Result<(), SolveError> {
+    const W: usize = 5;
+    let n = first.len();
+    let p = m + W;
+    // The first five columns and the last five rows by the general loops.
+    factor_columns_dyn(first, W, band, 0..W)?;
+    for i in (n - W..n).rev() {
+        bottom_row(first, band, i, i + 1, true)?;
+    }
+    let (mut j, mut i) = (W, n - W - 1);
+    while j < m && i >= p {
+        top_column5(first, band, j)?;
+        bottom_row5(first, band, i)?;
+        j += 1;
+        i -= 1;
+    }
+    while j < m {
+        top_column5(first, band, j)?;
+        j += 1;
+    }
+    while i >= p {
+        bottom_row5(first, band, i)?;
+        i -= 1;
+    }
+    // The middle's couplings with either end, t = L·D in place of A: top rows q < m of
+    // columns m..m+4, bottom columns l ≥ m+5 of rows m..m+4.
+    for c in m..p {
+        let lo = first[c];
+        for q in lo..m {
+            let mut t = band[at(q, c)];
+            for k in lo.max(first[q])..q {
+                t -= band[at(k, q)] * band[at(k, c)];
+            }
+            band[at(q, c)] = t;
+        }
+        bottom_row(first, band, c, p, false)?;
+    }
+    // S = A_MM − C_top − C_bottom (upper triangle; outside the skyline, zero).
+    let mut s = [0.0; 25];
+    for a in 0..W {
+        let ja = m + a;
+        for c in a..W {
+            let jc = m + c;
+            let mut v = if first[jc] <= ja {
+                band[at(ja, jc)]
+            } else {
+                0.0
+            };
+            for q in first[jc].max(first[ja])..m {
+                v -= band[at(q, ja)] * band[at(q, jc)] / band[at(q, q)];
+            }
+            for l in p..(ja + W + 1).min(n) {
+                if first[l] <= ja {
+                    v -= band[at(ja, l)] * band[at(jc, l)] / band[at(l, l)];
+                }
+            }
+            s[5 * a + c] = v;
+        }
+    }
+    // The middle's couplings as L and U.
+    for c in m..p {
+        for q in first[c]..m {
+            band[at(q, c)] /= band[at(q, q)];
+        }
+        for l in p..(c + W + 1).min(n) {
+            if first[l] <= c {
+                band[at(c, l)] /= band[at(l, l)];
+            }
+        }
+    }
+    // The dense LDLᵀ of S, left-looking as the band's columns.
+    for c in 0..W {
+        for a in 0..c {
+            let mut t = s[5 * a + c];
+            for k in 0..a {
+                t -= s[5 * k + a] * s[5 * k + c];
+            }
+            s[5 * a + c] = t;
+        }
+        let mut d = s[6 * c];
+        for a in 0..c {
+            let t = s[5 * a + c];
+            let l = t / s[6 * a];
+            d -= l * t;
+            s[5 * a + c] = l;
+        }
+        if d == 0.0 || !d.is_finite() {
+            return Err(SolveError::Singular { equation: m + c });
+        }
+        s[6 * c] = d;
+    }
+    *middle = s;
+    Ok(())
+}
+
+/// Row `i` of the bottom end ([`factor_twisted5`]), general: `t_l` for the columns `l` from
+/// `from` to `i+5` (and below `n`) whose skyline holds row `i`, from the last down, in place of
+/// `A_il`; with `full`, then `U_il = t_l/D_l` and `D_i`, else the `t_l` are left (the middle's).
+#[inline(always)]
+fn bottom_row(
+    first: &[usize],
+    band: &mut [f64],
+    i: usize,
+    from: usize,
+    full: bool,
+) -> Result<(), SolveError> {
+    let hi = (i + 5).min(first.len() - 1);
+    for l in (from..=hi).rev().filter(|&l| first[l] <= i) {
+        let mut t = band[at(i, l)];
+        for k in (l + 1..=hi.min(l + 5)).rev().filter(|&k| first[k] <= i) {
+            t -= band[at(l, k)] * band[at(i, k)];
+        }
+        band[at(i, l)] = t;
+    }
+    if full {
+        let mut d = band[at(i, i)];
+        for l in (from..=hi).rev().filter(|&l| first[l] <= i) {
+            let t = band[at(i, l)];
+            let u = t / band[at(l, l)];
+            d -= u * t;
+            band[at(i, l)] = u;
+        }
+        if d == 0.0 || !d.is_finite() {
+            return Err(SolveError::Singular { equation: i });
+        }
+        band[at(i, i)] = d;
+    }
+    Ok(())
+}
+
+/// Row `i` of the bottom end (`i + 5 < n`), unrolled as [`top_column5`]: the columns `l = i+5−a`
+/// (`a = 0..5`) after it, `U_il` at row `i` of column `l` (held when `first[l] ≤ i`).
+#[inline(always)]
+fn bottom_row5(first: &[usize], band: &mut [f64], i: usize) -> Result<(), SolveError> {
+    const W: usize = 5;
+    let (head, rest) = band.split_at_mut((i + 1) * (W + 1));
+    // Columns i+1..i+5: column l = i+5−a at win[6(4−a)..]; its row r at win[6(4−a) + 5 + r − l].
+    let win: &mut [f64; W * (W + 1)] = (&mut rest[..W * (W + 1)]).try_into().expect("window");
+    let fl: &[usize; W] = first[i + 1..i + 1 + W].try_into().expect("firsts");
+    let keep = |a: usize| fl[4 - a] <= i;
+    let mut c = [0.0; W];
+    for (a, ca) in c.iter_mut().enumerate() {
+        *ca = win[6 * (4 - a) + a]; // A_il, l = i+5−a
+    }
+    for a in 0..W {
+        let mut t = c[a];
+        for b in 0..a {
+            // U_{l_a l_b} (l_b = i+5−b > l_a): row l_a of column l_b.
+            t -= if keep(b) {
+                win[6 * (4 - b) + 5 - (a - b)] * c[b]
+            } else {
+                0.0
+            };
+        }
+        c[a] = if keep(a) { t } else { c[a] };
+    }
+    let mut d = head[i * (W + 1) + W];
+    for a in 0..W {
+        let t = c[a];
+        let u = t / win[6 * (4 - a) + 5];
+        d -= if keep(a) { u * t } else { 0.0 };
+        c[a] = if keep(a) { u } else { t };
+    }
+    if d == 0.0 || !d.is_finite() {
+        return Err(SolveError::Singular { equation: i });
+    }
+    for (a, ca) in c.iter().enumerate() {
+        win[6 * (4 - a) + a] = *ca;
+    }
+    head[i * (W + 1) + W] = d;
+    Ok(())
+}
+
+/// The solve with [`factor_twisted5`]'s factor: forward from both ends to the middle, the
+/// middle's five densely, backward from the middle to both ends; the two ends' sweeps in the same
+/// loops (each a chain of dependent operations; together they overlap), each keeping its last
+/// five unknowns in registers as [`solve_band5`] does.
+#[inline(always)]
+fn solve_twisted5(first: &[usize], band: &[f64], m: usize, middle: &[f64; 25], x: &mut [f64]) {
+    const W: usize = 5;
+    let n = first.len();
+    let p = m + W;
+    // Forward: z_j = b_j − Σ_i L_ji z_i (top), z_i = b_i − Σ_l U_il z_l (bottom).
+    forward_rows_dyn(first, W, band, x, 0..W);
+    for i in (n - W..n).rev() {
+        let mut s = x[i];
+        for l in (i + 1..n).rev().filter(|&l| first[l] <= i) {
+            s -= band[at(i, l)] * x[l];
+        }
+        x[i] = s;
+    }
+    let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = x[..W].try_into().expect("window");
+    // v0..v4 = x_{i+5} .. x_{i+1}.
+    let [mut v4, mut v3, mut v2, mut v1, mut v0]: [f64; W] = x[n - W..].try_into().expect("window");
+    let (top, bottom) = (forward_top5, forward_bottom5);
+    let (mut j, mut i) = (W, n - W - 1);
+    while j < m && i >= p {
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (w1, w2, w3, w4, s);
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        j += 1;
+        i -= 1;
+    }
+    while j < m {
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (w1, w2, w3, w4, s);
+        j += 1;
+    }
+    while i >= p {
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        i -= 1;
+    }
+    // The middle: its right-hand side less both ends' couplings, then L z = r, z/D, Lᵀ x = z.
+    let mut z = [0.0; W];
+    for (a, za) in z.iter_mut().enumerate() {
+        let c = m + a;
+        let mut s = x[c];
+        for q in first[c]..m {
+            s -= band[at(q, c)] * x[q];
+        }
+        for l in p..(c + W + 1).min(n) {
+            if first[l] <= c {
+                s -= band[at(c, l)] * x[l];
+            }
+        }
+        *za = s;
+    }
+    for c in 0..W {
+        for a in 0..c {
+            z[c] -= middle[5 * a + c] * z[a];
+        }
+    }
+    for (c, zc) in z.iter_mut().enumerate() {
+        *zc /= middle[6 * c];
+    }
+    for a in (0..W).rev() {
+        for c in a + 1..W {
+            z[a] -= middle[5 * a + c] * z[c];
+        }
+    }
+    x[m..p].copy_from_slice(&z);
+    // Backward: x_j = z_j/D_j − Σ_{q>j} L_qj x_q (top, j descending), x_i = z_i/D_i −
+    // Σ_{q<i} U_qi x_q (bottom, i ascending); each from the middle's five.
+    let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = z; // x_{j+1} .. x_{j+5}
+    let [mut v0, mut v1, mut v2, mut v3, mut v4]: [f64; W] = z; // x_{i−5} .. x_{i−1}
+    let (top, bottom) = (backward_top5, backward_bottom5);
+    let (mut j, mut i) = (m, p);
+    while j > 0 && i < n {
+        j -= 1;
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        i += 1;
+    }
+    while j > 0 {
+        j -= 1;
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
+    }
+    while i < n {
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        i += 1;
+    }
+}
+
+/// Forward row `j ≥ 5` of the top end: `z_j = b_j − Σ_i L_ji z_i`, `w` = `z_{j−5} .. z_{j−1}`
+/// (zeros above the skyline).
+#[inline(always)]
+fn forward_top5(band: &[f64], j: usize, x: &[f64], w: [f64; 5]) -> f64 {
+    let l: &[f64; 6] = band[j * 6..][..6].try_into().expect("column");
+    x[j] - l[0] * w[0] - l[1] * w[1] - l[2] * w[2] - l[3] * w[3] - l[4] * w[4]
+}
+
+/// Forward row `i` (`i + 5 < n`) of the bottom end: `z_i = b_i − Σ_l U_il z_l`, `v` =
+/// `z_{i+5} .. z_{i+1}`.
+#[inline(always)]
+fn forward_bottom5(band: &[f64], i: usize, x: &[f64], v: [f64; 5]) -> f64 {
+    // U_il, l = i+5−a: row i of column l, u[6(4−a) + a].
+    let u: &[f64; 30] = band[(i + 1) * 6..][..30].try_into().expect("columns");
+    x[i] - u[24] * v[0] - u[19] * v[1] - u[14] * v[2] - u[9] * v[3] - u[4] * v[4]
+}
+
+/// Backward row `j` (`j + 5 < n`) of the top end: `x_j = z_j/D_j − Σ_{q>j} L_qj x_q`, `w` =
+/// `x_{j+1} .. x_{j+5}`.
+#[inline(always)]
+fn backward_top5(band: &[f64], j: usize, x: &[f64], w: [f64; 5]) -> f64 {
+    // Column q = j+1+b, row j: below[6b + 4 − b].
+    let below: &[f64; 30] = band[(j + 1) * 6..][..30].try_into().expect("columns");
+    x[j] / band[j * 6 + 5]
+        - below[24] * w[4]
+        - below[18 + 1] * w[3]
+        - below[12 + 2] * w[2]
+        - below[6 + 3] * w[1]
+        - below[4] * w[0]
+}
+
+/// Backward row `i ≥ 5` of the bottom end: `x_i = z_i/D_i − Σ_{q<i} U_qi x_q`, `v` =
+/// `x_{i−5} .. x_{i−1}`.
+#[inline(always)]
+fn backward_bottom5(band: &[f64], i: usize, x: &[f64], v: [f64; 5]) -> f64 {
+    // Row q = i−5+a of column i: col[a].
+    let col: &[f64; 6] = band[i * 6..][..6].try_into().expect("column");
+    x[i] / col[5] - col[0] * v[0] - col[1] * v[1] - col[2] * v[2] - col[3] * v[3] - col[4] * v[4]
 }
 
 /// The general band factorisation over all columns.
@@ -767,6 +1196,9 @@ mod tests {
                 continue;
             }
             assert_eq!(ldlt.blocks, !holed, "{nodes} nodes");
+            // Top-down (a long line is factorised from both ends: the next test).
+            assert_eq!(ldlt.twist.is_some(), !holed && n >= TWIST_MIN);
+            ldlt.twist = None;
             // Factorised twice: the second time on the first's band.
             ldlt.factor(&a).expect("factor");
             ldlt.factor(&a).expect("factor");
@@ -795,6 +1227,95 @@ mod tests {
             ldlt.solve_in_place(&mut x1);
             solve_band_dyn(&ldlt.first, 5, &general, &mut x2);
             assert_eq!(bits(&x1), bits(&x2), "solve, {nodes} nodes");
+        }
+    }
+
+    /// A line's pattern (3 unknowns a node, elements coupling neighbours) of `nodes` nodes, with
+    /// the values of [`unrolled_band_is_the_general_band_to_the_bit`] scaled by `seed`: negative
+    /// pivots among them.
+    fn line_system(nodes: usize, seed: usize) -> SparseSym {
+        let n = 3 * nodes;
+        let pairs = (0..nodes - 1)
+            .flat_map(|e| (0..6).flat_map(move |a| (0..6).map(move |b| (3 * e + a, 3 * e + b))));
+        let mut a = SparseSym::from_couplings(n, pairs);
+        for k in 0..a.values.len() {
+            a.values[k] =
+                0.3 * (((k + seed) * 7919 % 101) as f64 / 101.0 - 0.5) * (1.0 + k as f64).sqrt();
+        }
+        for i in 0..n {
+            let d = a.slot(i, i).expect("diagonal");
+            a.values[d] = 4.0 + (i % 5) as f64 - 9.0 * f64::from(u8::from((i + seed) % 17 == 5));
+        }
+        a
+    }
+
+    /// The twisted factorisation (from both ends, [`factor_twisted5`]) solves a line's system as
+    /// the top-down one does, to rounding: `A x = b` to 1e-11 relative and the two solutions to
+    /// 1e-11 of the largest unknown, on lines of 14 to 401 nodes (every meeting place modulo a
+    /// node's three unknowns, both parities of the length), with negative pivots, factorised twice
+    /// in the same solver (the places above the skyline then hold the first factor's values).
+    #[test]
+    fn twisted_band_is_the_band_to_rounding() {
+        for nodes in [14, 15, 16, 17, 18, 19, 40, 101, 401] {
+            for seed in [0, 3] {
+                let a = line_system(nodes, seed);
+                let n = a.n;
+                let mut twisted = BandLdlt::new(&a);
+                assert!(twisted.blocks && twisted.twist.is_some(), "{nodes} nodes");
+                let mut top_down = twisted.clone();
+                top_down.twist = None;
+                twisted
+                    .factor(&line_system(nodes, seed + 1))
+                    .expect("first");
+                twisted.factor(&a).expect("twisted");
+                top_down.factor(&a).expect("top-down");
+                let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos() * 1e3).collect();
+                let (mut x1, mut x2) = (b.clone(), b.clone());
+                twisted.solve_in_place(&mut x1);
+                top_down.solve_in_place(&mut x2);
+                let mut ax = vec![0.0; n];
+                a.mul(&x1, &mut ax);
+                let scale = x2.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                for i in 0..n {
+                    assert!(
+                        (ax[i] - b[i]).abs() < 1e-11 * 1e3 * scale.max(1.0),
+                        "{nodes} nodes, residual at {i}: {}",
+                        ax[i] - b[i]
+                    );
+                    assert!(
+                        (x1[i] - x2[i]).abs() < 1e-11 * scale,
+                        "{nodes} nodes, unknown {i}: {} against {}",
+                        x1[i],
+                        x2[i]
+                    );
+                }
+                assert_ne!(x1, x2, "a different order rounds differently somewhere");
+            }
+        }
+    }
+
+    /// The twisted factorisation names the zero pivot wherever it is: in the top end, in the
+    /// bottom end (general and unrolled rows) and in the middle block.
+    #[test]
+    fn twisted_band_reports_a_zero_pivot() {
+        let nodes = 30;
+        let n = 3 * nodes;
+        let m = (n - 5) / 2;
+        for e in [2, 7, m - 1, m, m + 2, m + 4, m + 5, n - 8, n - 3, n - 1] {
+            let mut a = line_system(nodes, 0);
+            // Decoupled: each pivot is its diagonal, whatever the order.
+            a.values.fill(0.0);
+            for i in 0..n {
+                let d = a.slot(i, i).expect("diagonal");
+                a.values[d] = if i == e { 0.0 } else { 2.0 };
+            }
+            let mut band = BandLdlt::new(&a);
+            assert_eq!(band.twist, Some(m));
+            assert_eq!(
+                band.factor(&a),
+                Err(SolveError::Singular { equation: e }),
+                "{e}"
+            );
         }
     }
 
