@@ -215,16 +215,18 @@ pub struct BandLdlt {
     /// values end in the pattern, `col_ptr[c + 1]`) as one block into the
     /// column, instead of scattering value by value through `map` (a third of the time of a
     /// factorisation: the map is one more array as large as the values). The places above a
-    /// column's skyline then hold the previous column's last values, which the half-width-5
-    /// kernels never read: they select by the skyline (`first`), never by a stored zero.
+    /// column's skyline then hold the previous column's last values, which the top-down
+    /// half-width-5 kernels never read: they select by the skyline (`first`), never by a stored
+    /// zero (the twisted solve reads zeros there: `above`).
     blocks: bool,
     /// Factorised from both ends ([`factor_twisted5`]): `Some(m)`, the first of the five middle
     /// equations `m..m+5`, for a line's pattern (`blocks`, each column's first row nondecreasing)
     /// of at least [`TWIST_MIN`] equations; `None`: top-down.
     twist: Option<usize>,
     /// The places in `band` above each column's skyline from column 5 on (twisted only): zeroed
-    /// after the block copy, so that the twisted kernels multiply by zero where the top-down ones
-    /// select.
+    /// after the block copy (which leaves the previous column's values there), so that the twisted
+    /// solve multiplies by zero where the top-down one selects; the factorisation's kernels select
+    /// and write back what they read there, so the zeros stay.
     above: Vec<usize>,
     /// The twisted factorisation's middle block `m..m+5`, densely: `L_ca` at `[5a + c]` (`a < c`),
     /// `D_c` at `[6c]`.
@@ -541,7 +543,8 @@ fn at(i: usize, l: usize) -> usize {
 /// solution, agree with [`factor_band5`]'s to rounding (`twisted_band_is_the_band_to_rounding`).
 /// The band's rows are the line's skyline (each column's `first` nondecreasing: the rows of row
 /// `i`'s band beyond the diagonal are then `i+1 ..= last` with no gap, and neither end fills in
-/// outside them); a place outside the skyline holds whatever it held and is never read.
+/// outside them); a place above the skyline is zero (`BandLdlt::above`) and stays zero: the
+/// kernels select by `first` and write back what they read there.
 #[inline(always)]
 fn factor_twisted5(
     first: &[usize],
@@ -1253,7 +1256,8 @@ mod tests {
     /// the top-down one does, to rounding: `A x = b` to 1e-11 relative and the two solutions to
     /// 1e-11 of the largest unknown, on lines of 14 to 401 nodes (every meeting place modulo a
     /// node's three unknowns, both parities of the length), with negative pivots, factorised twice
-    /// in the same solver (the places above the skyline then hold the first factor's values).
+    /// in the same solver (a second block copy over the first factor; the places above the
+    /// skyline must be zeroed again for the solve).
     #[test]
     fn twisted_band_is_the_band_to_rounding() {
         for nodes in [14, 15, 16, 17, 18, 19, 40, 101, 401] {
