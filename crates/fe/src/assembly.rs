@@ -236,8 +236,10 @@ impl Assembler {
             self.assemble_element_forces(pl, u);
         }
         let q = &pl.base;
-        for (g, f) in model.dead_load.iter().enumerate() {
-            self.residual[g] -= f;
+        // Zipped, not indexed: the indexed loop reloaded the residual's pointer and checked its
+        // bound at every entry and ran scalar (2.3 % of the 3-hour storm's samples).
+        for (r, f) in self.residual.iter_mut().zip(&model.dead_load) {
+            *r -= f;
         }
         if let Some(fj) = &model.flexjoint {
             let g = 3 * fj.node + 2;
@@ -494,7 +496,13 @@ impl Assembler {
             m += self.moments[i].0;
             c += 1.0;
         }
-        (t / c, m / c)
+        // An interior node's mean is a halving: multiplied by ½, exactly the division's value,
+        // without two divisions on the chain of every node of every converged step.
+        if c == 2.0 {
+            (t * 0.5, m * 0.5)
+        } else {
+            (t / c, m / c)
+        }
     }
 
     /// Fills `out` at the configuration `u` just assembled: positions, angles, tension and moment
