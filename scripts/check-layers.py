@@ -4,9 +4,16 @@
 For each crate under crates/, every `crate::m` (and, in a submodule, `super::m`) reference outside
 comments is an edge from the file's top-level module to `m`; a cycle among top-level modules is
 reported and the script exits 1. (Crates themselves cannot form cycles: cargo refuses them.)
+
+A crate whose folders are its layers declares their order in LAYERS, lowest first: a top-level
+module may then use only itself and the modules before it (`error`, shared by all, comes first),
+and a top-level module missing from the list fails the check, so a new folder has to take its
+place in the order.
 """
 import os,re,sys,itertools
 root=os.path.join(os.path.dirname(os.path.abspath(__file__)),'..','crates')
+# The layers of the library, lowest first (ARCHITECTURE.md, crates/app/src/lib.rs).
+LAYERS={'app':['error','checks','scene','run','studies']}
 bad=0
 for crate in sorted(os.listdir(root)):
     src=os.path.join(root,crate,'src')
@@ -31,5 +38,14 @@ for crate in sorted(os.listdir(root)):
             elif d not in seen:
                 seen.add(d); dfs(d,stack+[d],seen)
     for m in mods: dfs(m,[m],{m})
-print('check-layers: ' + ('%d cycles' % bad if bad else 'no import cycle between modules'))
+    order=LAYERS.get(crate)
+    if order:
+        for m,deps in sorted(mods.items()):
+            if m not in order:
+                print(crate,'module',m,'is in no layer: add it to LAYERS in scripts/check-layers.py'); bad+=1
+                continue
+            for d in sorted(deps):
+                if d in order and order.index(d)>order.index(m):
+                    print(crate,'layer:',m,'uses',d,'which is above it'); bad+=1
+print('check-layers: ' + ('%d problems' % bad if bad else 'no import cycle between modules, every layer uses only those below it'))
 sys.exit(1 if bad else 0)

@@ -8,7 +8,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use catena::observe::{Observer, Records};
+use catena::observe::Observer;
+use catena::run::records::Records;
 use catena::run::{self, RunOptions};
 use catena::scene::edit::Edit;
 use catena::statics;

@@ -188,7 +188,7 @@ fn compression_changes_no_value() {
     .expect("runs");
     let fa = hdf5::File::open(plain.join("results.h5")).expect("h5");
     let fb = hdf5::File::open(packed.join("results.h5")).expect("h5");
-    for (name, _) in catena::observe::RECORD_FIELDS {
+    for (name, _) in catena::run::records::RECORD_FIELDS {
         let (a, b) = (
             fa.dataset(&format!("dynamic/{name}")).expect(name),
             fb.dataset(&format!("dynamic/{name}")).expect(name),

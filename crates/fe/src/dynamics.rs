@@ -71,22 +71,33 @@
 //! largest displacement from the base (the second term is the rounding floor of the axial forces), or a relative residual below 1e-6 with a correction below
 //! 1e-10 m (machine-precision stagnation).
 
-use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
+mod carry;
+mod mass;
+mod water;
+mod workspace;
+
+use carry::at_rest;
+pub use carry::{carried_state, Carry};
+use mass::{add_mass_tangent, lump_mass, structural_mass};
+use water::wave_kinematics;
+use workspace::friction_anchor_len;
+pub use workspace::DynWorkspace;
+
+use catena_seabed::law::{SeabedHistory, TrialMemo};
 use serde::{Deserialize, Serialize};
 
-use crate::assembly::{Assembler, LineResults, Placement};
-use crate::boundary::{self, Constraint};
+use crate::assembly::{LineResults, Placement};
+use crate::boundary::{self};
 use crate::environment::Environment;
 use crate::integrator::StepCoefficients;
-use crate::loads::{self, penetration, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
+use crate::loads::{self, penetration, Iterate, LoadModel, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 pub use crate::newton::{max_abs, residual_floor, MAX_BACKTRACKS};
 use crate::newton::{worst_node, Accepted, Newton, Pass, Verdict};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
-use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
-use crate::waves::{Kinematics, WaveKinematics, WaveScratch};
+use crate::wave_sampling::KinematicsGrid;
 
 pub use crate::integrator::{sdof_free_vibration, Scheme};
 
@@ -354,169 +365,6 @@ pub struct SolverMemory {
     pub rate: Option<f64>,
 }
 
-/// Scratch for the dynamics (never saved).
-#[derive(Debug)]
-pub struct DynWorkspace {
-    /// The structural assembly (pattern, factorisation, element results).
-    pub asm: Assembler,
-    /// Lumped mass per node: `[xx, xz, zz, rot]`.
-    mass: Vec<[f64; 4]>,
-    /// The line's own lumped mass per node (no added mass): it does not change with the motion.
-    structural_mass: Vec<[f64; 4]>,
-    /// Non-inertial forces at the trial, 3 per node (after a commit, those of the step before:
-    /// the converged ones are exchanged into the State's `f_prev`).
-    pub f: Vec<f64>,
-    /// What the loads fill per node: the seabed force per length at the trial (resistance,
-    /// buoyancy and damping) and each node's tangent ([`crate::loads::LoadScratch`]).
-    pub loads: LoadScratch,
-    /// Each node's trial seabed history at the last iterate evaluated, when that evaluation kept
-    /// them (`histories_kept`): the commit then takes them instead of evaluating them again.
-    trial_history: Vec<SeabedHistory>,
-    histories_kept: bool,
-    /// What each node's seabed trials keep between them ([`TrialMemo`]: a pure cache).
-    trial_memo: Vec<TrialMemo>,
-    g: Vec<f64>,
-    dq: Vec<f64>,
-    u: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    /// The State at the start of the step (restored if the step fails).
-    saved: DynState,
-    /// Water kinematics at each node for the step under way (evaluated once per attempt at the
-    /// predicted positions; `None` above the surface or without waves).
-    wave_kin: Vec<Option<Kinematics>>,
-    /// The wave trains' per-time scratch (sized on first use).
-    wave_scratch: WaveScratch,
-    /// The wave kinematics samples of the step under way when it needed new ones (committed into
-    /// the State with the step), and whether it did.
-    grid_trial: KinematicsGrid,
-    grid_new: bool,
-    /// The flexjoint's vessel-side rotation for the step under way, rad.
-    fj_rotation: f64,
-    /// The Δt of the Jacobian factorised last (its factorisation is reused for the first
-    /// iterations of the next step of the same Δt).
-    factored_dt: Option<f64>,
-    /// How fast corrections with that factorisation contracted the residual, when measured
-    /// ([`crate::newton`]: more than one correction per step reuses it while it contracts fast).
-    reuse_rate: Option<f64>,
-    /// The free dofs as runs `(g0, e0, len)`: dofs `g0..g0+len` are equations `e0..e0+len` (the
-    /// Newton loop's vector operations run over these slices, without a lookup per dof).
-    free_runs: Vec<(usize, usize, usize)>,
-    /// The prescribed dofs and what prescribes them ([`crate::boundary`]).
-    constraints: Vec<Constraint>,
-    /// The residual of every dof (3 per node) before its free equations are taken.
-    g_all: Vec<f64>,
-    /// The residual's reference norm ([`crate::statics::residual_reference`]) of the Model.
-    reference: f64,
-}
-
-impl DynWorkspace {
-    /// Builds the workspace (pattern and symbolic factorisation once).
-    pub fn new(line: &LineModel) -> Result<Self, SolveError> {
-        let n = line.nodes();
-        let untouched = line
-            .seabed
-            .as_ref()
-            .map_or(SeabedHistory::Linear(Default::default()), |s| {
-                s.seabed.untouched()
-            });
-        let mut free_runs: Vec<(usize, usize, usize)> = Vec::new();
-        for (g, e) in line.equation.iter().enumerate() {
-            match (e, free_runs.last_mut()) {
-                (Some(e), Some((g0, e0, len))) if *g0 + *len == g && *e0 + *len == *e => *len += 1,
-                (Some(e), _) => free_runs.push((g, *e, 1)),
-                (None, _) => {}
-            }
-        }
-        Ok(Self {
-            reference: crate::statics::residual_reference(line),
-            free_runs,
-            constraints: boundary::constraints(line),
-            g_all: vec![0.0; 3 * n],
-            asm: Assembler::new(line)?,
-            mass: vec![[0.0; 4]; n],
-            structural_mass: structural_mass(line),
-            f: vec![0.0; 3 * n],
-            loads: LoadScratch::new(n),
-            trial_history: vec![untouched; n],
-            histories_kept: false,
-            trial_memo: match line.seabed.as_ref().map(|s| &s.seabed.law) {
-                Some(Law::RandolphQuiggin(_)) => vec![TrialMemo::default(); n],
-                _ => Vec::new(),
-            },
-            g: vec![0.0; line.n_eq],
-            dq: vec![0.0; line.n_eq],
-            u: vec![0.0; 3 * n],
-            v: vec![0.0; 3 * n],
-            a: vec![0.0; 3 * n],
-            saved: DynState {
-                t: 0.0,
-                step: 0,
-                u: vec![0.0; 3 * n],
-                v: vec![0.0; 3 * n],
-                a: vec![0.0; 3 * n],
-                f_prev: vec![0.0; 3 * n],
-                history: vec![untouched; n],
-                wave_grid: None,
-                friction_anchor: vec![0.0; friction_anchor_len(line)],
-            },
-            factored_dt: None,
-            reuse_rate: None,
-            wave_kin: vec![None; n],
-            wave_scratch: WaveScratch::default(),
-            grid_trial: KinematicsGrid::default(),
-            grid_new: false,
-            fj_rotation: 0.0,
-        })
-    }
-
-    /// Drops the factorisation kept for reuse: the next step starts with a full Newton iteration.
-    pub fn forget_factorisation(&mut self) {
-        self.factored_dt = None;
-        self.reuse_rate = None;
-    }
-
-    /// The factorisation kept for reuse, as data (see [`SolverMemory`]).
-    pub fn solver_memory(&self) -> Option<SolverMemory> {
-        self.factored_dt.map(|dt| SolverMemory {
-            dt,
-            rate: self.reuse_rate,
-            values: self.asm.factored_values().to_vec(),
-        })
-    }
-
-    /// Restores a [`SolverMemory`]: refactorises its values, so the next step reuses exactly the
-    /// factorisation the run that exported it would have reused.
-    pub fn restore_solver_memory(&mut self, m: &SolverMemory) -> Result<(), String> {
-        if m.values.len() != self.asm.pattern_len() {
-            return Err(format!(
-                "solver memory has {} values, expected {} (the tangent's pattern)",
-                m.values.len(),
-                self.asm.pattern_len()
-            ));
-        }
-        if !(m.dt.is_finite() && m.dt > 0.0) || m.values.iter().any(|x| !x.is_finite()) {
-            return Err("solver memory holds a non-finite value".into());
-        }
-        self.asm
-            .refactor_from(&m.values)
-            .map_err(|e| e.to_string())?;
-        self.factored_dt = Some(m.dt);
-        self.reuse_rate = m.rate;
-        Ok(())
-    }
-}
-
-/// The friction anchors' entries: one per node (x) when the seabed has friction, two (x, z) on a
-/// profile, none without friction.
-fn friction_anchor_len(line: &LineModel) -> usize {
-    match line.seabed.as_ref().and_then(|s| s.friction) {
-        Some(_) if line.mudline_profile.is_empty() => line.nodes(),
-        Some(_) => 2 * line.nodes(),
-        None => 0,
-    }
-}
-
 /// The dynamic State at the end of the statics: at rest, each node in contact starting in Initial
 /// Penetration at its static penetration (the spec's decision). The initial acceleration is the
 /// lumped `a0 = −M⁻¹F(u, 0)` on the free dofs (zero from a static equilibrium).
@@ -555,102 +403,6 @@ pub fn initial_state(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) -> Dyn
         },
         ws,
     )
-}
-
-/// What a run leaves for the next one when the line has been brought to rest (a storm sequence's
-/// calm interval): positions, every node's committed seabed history (its trench, its degradation)
-/// and friction anchors. Velocities and accelerations are not carried: the next run starts at rest.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Carry {
-    /// Displacements from the placement's base, 3 per node.
-    pub u: Vec<f64>,
-    /// Each node's committed seabed history.
-    pub history: Vec<SeabedHistory>,
-    /// Each node's friction anchor ([`DynState::friction_anchor`]).
-    pub friction_anchor: Vec<f64>,
-}
-
-impl DynState {
-    /// What this State leaves for a run that continues from rest ([`Carry`]).
-    pub fn carry(&self) -> Carry {
-        Carry {
-            u: self.u.clone(),
-            history: self.history.clone(),
-            friction_anchor: self.friction_anchor.clone(),
-        }
-    }
-}
-
-/// The dynamic State at rest from a carried one ([`Carry`]): `t = 0`, zero velocities, the
-/// histories and anchors as carried, and the lumped `a0 = −M⁻¹F(u, 0)` (zero at an equilibrium).
-/// The carry is checked to fit the Model (the error says which field is wrong).
-pub fn carried_state(
-    dm: &DynamicModel,
-    carry: &Carry,
-    ws: &mut DynWorkspace,
-) -> Result<DynState, String> {
-    let n = dm.line.nodes();
-    let probe = DynState {
-        t: 0.0,
-        step: 0,
-        u: carry.u.clone(),
-        v: vec![0.0; 3 * n],
-        a: vec![0.0; 3 * n],
-        f_prev: vec![0.0; 3 * n],
-        history: carry.history.clone(),
-        wave_grid: None,
-        friction_anchor: carry.friction_anchor.clone(),
-    };
-    probe.check_fits(dm)?;
-    Ok(at_rest(dm, carry.clone(), ws))
-}
-
-/// The State at rest at `carry`, its forces evaluated and its acceleration `−M⁻¹F` on the free dofs.
-fn at_rest(dm: &DynamicModel, carry: Carry, ws: &mut DynWorkspace) -> DynState {
-    let model = &dm.line;
-    let n = model.nodes();
-    let v = vec![0.0; 3 * n];
-    let Carry {
-        u,
-        history,
-        friction_anchor,
-    } = carry;
-    ws.factored_dt = None;
-    let mut state = DynState {
-        t: 0.0,
-        step: 0,
-        u,
-        v: v.clone(),
-        a: v,
-        f_prev: vec![0.0; 3 * n],
-        history,
-        wave_grid: None,
-        friction_anchor,
-    };
-    ws.u.copy_from_slice(&state.u);
-    ws.v.copy_from_slice(&state.v);
-    forces_at_iterate(dm, &state, ws, Pass::Forces, 0.0, 0.0, 0.0);
-    state.f_prev.copy_from_slice(&ws.f);
-    lump_mass(dm, &state.u, ws);
-    for i in 0..n {
-        let m = ws.mass[i];
-        let (fx, fz, fr) = (ws.f[3 * i], ws.f[3 * i + 1], ws.f[3 * i + 2]);
-        let det = m[0] * m[2] - m[1] * m[1];
-        if det > 0.0 {
-            let ax = -(m[2] * fx - m[1] * fz) / det;
-            let az = -(m[0] * fz - m[1] * fx) / det;
-            if model.equation[3 * i].is_some() {
-                state.a[3 * i] = ax;
-            }
-            if model.equation[3 * i + 1].is_some() {
-                state.a[3 * i + 1] = az;
-            }
-        }
-        if m[3] > 0.0 && model.equation[3 * i + 2].is_some() {
-            state.a[3 * i + 2] = -fr / m[3];
-        }
-    }
-    state
 }
 
 /// Assembles the non-inertial forces `F(u, v)` at the workspace's iterate `(ws.u, ws.v)` into
@@ -694,148 +446,6 @@ fn forces_at_iterate(
     // Exchanged, not copied: the next assembly's element pass writes every entry of the residual
     // before anything adds to it.
     std::mem::swap(&mut ws.f, &mut asm.residual);
-}
-
-/// The water kinematics at each node at `t` into `ws.wave_kin` (nothing without waves, or without
-/// hydrodynamics to load the line with them): see [`water_kinematics`].
-fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &mut DynWorkspace) {
-    let env = &dm.environment;
-    let (Some(waves), Some(_)) = (&env.waves, &env.hydro) else {
-        return;
-    };
-    let out = WaterOut {
-        kin: &mut ws.wave_kin,
-        scratch: &mut ws.wave_scratch,
-        grid: &mut ws.grid_trial,
-        grid_new: &mut ws.grid_new,
-    };
-    water_kinematics(waves, &dm.placement, env.water_level, state, t, &ws.u, out);
-}
-
-/// Where [`water_kinematics`] writes: each node's kinematics, the theory's scratch, and the new
-/// samples of the step (and whether it took any).
-struct WaterOut<'a, S> {
-    kin: &'a mut [Option<Kinematics>],
-    scratch: &'a mut S,
-    grid: &'a mut KinematicsGrid,
-    grid_new: &'a mut bool,
-}
-
-/// The water kinematics of any wave theory ([`WaveKinematics`]) at each node at `t`: evaluated at
-/// the positions of the iterate `u` (the predictor), or, when the waves are sampled on a time grid
-/// (`kinematics_interval` h > 0), interpolated between the samples at the grid times around `t`
-/// ([`crate::wave_sampling`]), new samples being taken from the committed `state` when the step
-/// first needs them.
-fn water_kinematics<W: WaveKinematics>(
-    waves: &W,
-    pl: &Placement,
-    level: f64,
-    state: &DynState,
-    t: f64,
-    u: &[f64],
-    out: WaterOut<'_, W::Scratch>,
-) {
-    let h = waves.sampling_interval();
-    *out.grid_new = false;
-    // Node `i` at the iterate (the predictor).
-    let predicted = |i: usize| {
-        (
-            pl.base[3 * i] + u[3 * i],
-            pl.base[3 * i + 1] + u[3 * i + 1] - level,
-        )
-    };
-    if h <= 0.0 {
-        for (i, k) in out.kin.iter_mut().enumerate() {
-            let (x, z) = predicted(i);
-            *k = waves.water_at(x, z, t, out.scratch);
-        }
-        return;
-    }
-    let m = grid_index(t, h);
-    let reuse = state.wave_grid.as_ref().filter(|g| g.index == m);
-    if reuse.is_none() {
-        // Node `i` at grid time `tm`, extrapolated from the committed State.
-        let (u, v, a) = (&state.u, &state.v, &state.a);
-        let at = |tm: f64, i: usize| {
-            let tau = tm - state.t;
-            let p = |j: usize| pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j];
-            (p(3 * i), p(3 * i + 1) - level)
-        };
-        let n = out.kin.len();
-        for s in &mut out.grid.samples {
-            s.resize(n, None); // sized once
-        }
-        let prev = state.wave_grid.as_ref();
-        fill_interval(waves, h, m, prev, at, out.grid, out.scratch);
-        *out.grid_new = true;
-    }
-    let grid = reuse.unwrap_or(out.grid);
-    let s = (t - (m - 1) as f64 * h) / h;
-    for (i, k) in out.kin.iter_mut().enumerate() {
-        // Each arm writes its own answer: a `match` that returned one built the interpolated
-        // value on the stack and copied it over with loads straddling its stores, a stall per
-        // node (1.7 % of the 3-hour storm's samples).
-        match (&grid.samples[0][i], &grid.samples[1][i]) {
-            (Some(k0), Some(k1)) => *k = Some(interpolate(k0, k1, s, h)),
-            // Out of the water at a sample: the exact kinematics at the predicted position.
-            _ => {
-                let (x, z) = predicted(i);
-                *k = waves.water_at(x, z, t, out.scratch);
-            }
-        }
-    }
-}
-
-/// The line's own lumped mass per node `[xx, xz, zz, rot]`: half of each element's mass at each
-/// of its nodes, and the rotary inertia of a thin ring, `m·D²/8` per length; attached bodies'
-/// masses at their nodes.
-fn structural_mass(model: &LineModel) -> Vec<[f64; 4]> {
-    let mut mass = vec![[0.0; 4]; model.nodes()];
-    for (e, el) in model.elements.iter().enumerate() {
-        let half = 0.5 * el.mass * el.l0;
-        for i in [e, e + 1] {
-            mass[i][0] += half;
-            mass[i][2] += half;
-            mass[i][3] += half * el.od * el.od / 8.0;
-        }
-    }
-    // Attached bodies: their mass at their node, in x and z (a point mass: no rotary inertia).
-    for a in &model.attachments {
-        mass[a.node][0] += a.mass;
-        mass[a.node][2] += a.mass;
-    }
-    mass
-}
-
-/// Lumped mass at the orientation `u`: the line's own ([`structural_mass`]) and the added mass
-/// normal to the tangent there; attached bodies' added mass in both directions.
-fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
-    let (model, pl) = (&dm.line, &dm.placement);
-    let Some(h) = &dm.environment.hydro else {
-        ws.mass.copy_from_slice(&ws.structural_mass);
-        return;
-    };
-    loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
-    let [cos, sin] = &ws.loads.node_tangent;
-    let hc = h.coefficients();
-    // The line's own mass plus the added mass, in one pass (the same sums as a copy and `+=`).
-    let line = ws.structural_mass.iter();
-    for (i, (m, s)) in ws.mass.iter_mut().zip(line).enumerate() {
-        let c = model.node_coefficients.get(i).unwrap_or(&hc);
-        let ma = h.added_mass(c, model.node_hydro_od[i], model.tributary[i]);
-        let (tx, ty) = (cos[i], sin[i]);
-        *m = [
-            s[0] + ma * (1.0 - tx * tx),
-            s[1] + -ma * tx * ty,
-            s[2] + ma * (1.0 - ty * ty),
-            s[3],
-        ];
-    }
-    // Attached bodies' added mass: isotropic (a compact body).
-    for a in &model.attachments {
-        ws.mass[a.node][0] += a.added_mass;
-        ws.mass[a.node][2] += a.added_mass;
-    }
 }
 
 /// One attempt at a step of `dt` from `state`. On success the State is advanced (histories
@@ -957,14 +567,6 @@ fn attempt(
         last: worst_node(model, nt.last(), &ws.g),
         diverged: false,
     })
-}
-
-/// The lumped mass's part of the tangent, `c_m·M_i` at every node `i`.
-fn add_mass_tangent(asm: &mut Assembler, model: &LineModel, c_m: f64, mass: &[[f64; 4]]) {
-    for (i, m) in mass.iter().enumerate() {
-        asm.add_node_block(i, c_m * m[0], c_m * m[1], c_m * m[2]);
-        asm.add_dof_tangent(model, 3 * i + 2, c_m * m[3]);
-    }
 }
 
 /// A failed attempt: the last iterate's (iteration, relative residual, worst node), and whether

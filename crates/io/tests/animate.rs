@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use catena::observe::{Observer, Records as RunRecords};
+use catena::observe::Observer;
+use catena::run::records::Records as RunRecords;
 use catena::run::RunOptions;
 use catena_io::animate::{animate, diameters, frame_records, Colour, Options, Records};
 

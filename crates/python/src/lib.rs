@@ -10,7 +10,8 @@
 
 use std::path::PathBuf;
 
-use catena::observe::{Control, Observer, Records, RunContext, StepView};
+use catena::observe::{Control, Observer, RunContext, StepView};
+use catena::run::records::Records;
 use catena::run::RunOptions;
 use catena::scene::edit::Edit;
 use catena::scene::riser::RiserScene;

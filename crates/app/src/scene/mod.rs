@@ -11,6 +11,7 @@ mod checks;
 mod dynamic;
 pub mod edit;
 mod line;
+mod outputs;
 pub mod riser;
 mod sea;
 pub mod seabed;

@@ -22,13 +22,14 @@ use catena_fe::environment::Coefficients;
 use catena_fe::model::{LineModel, Segment};
 
 use super::checks::positive;
-use super::dynamic::{sn_curve_of, DynamicSpec};
+use super::dynamic::DynamicSpec;
 use super::invalid;
 use super::line::{mesh_lengths, pipe_properties, LineProperties, PipeKeys};
+use super::outputs::sn_curve_of;
 use super::tables::{LineTypeTable, MeshTable, RiserFile};
+use crate::checks::fatigue::sn::SnCurve;
+use crate::checks::fatigue::stress::PipeSection;
 use crate::error::SceneError;
-use crate::fatigue::sn::SnCurve;
-use crate::fatigue::stress::PipeSection;
 
 /// A line type, checked.
 #[derive(Debug, Clone, PartialEq)]

@@ -353,7 +353,7 @@ fn outer() -> Vec<String> {
     vec!["outer".into()]
 }
 
-/// `[design_check]`: the strength check along the line (see `crate::design`).
+/// `[design_check]`: the strength check along the line (see `crate::checks::design`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 #[allow(missing_docs)]
@@ -393,7 +393,7 @@ fn gamma_e() -> f64 {
     1.3
 }
 
-/// `[extremes]`: short-term extreme statistics of chosen channels (see `crate::extremes`).
+/// `[extremes]`: short-term extreme statistics of chosen channels (see `crate::checks::extremes`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 #[allow(missing_docs)]

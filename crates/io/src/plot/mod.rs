@@ -1,0 +1,478 @@
+//! PNG plots, drawn with plotters. The font (DejaVu Sans, Bitstream Vera licence, `assets/`) is
+//! embedded in the binary, so plots need nothing from the system.
+//!
+//! One module per figure family; this module holds what every figure shares: the font, the colours,
+//! the canvas and the PNG writer, the opaque grid, and the panels (framed charts, legends, lines).
+//! A new figure: a function in its family's module (or a new module here), drawn on `pixels` with
+//! the shared panels, written by `write_image`, re-exported below.
+
+mod checks;
+mod dynamic;
+mod line;
+mod sea;
+mod sequence;
+mod soil;
+
+pub use checks::{design_check, extremes, strength};
+pub use dynamic::{dynamic, dynamic_on, gauges};
+pub use line::{ranges, ranges_on, static_line};
+pub use sea::sea;
+pub use sequence::{sequence, SequencePlot};
+pub use soil::{calibration, soil_test};
+
+use std::path::Path;
+use std::sync::Once;
+
+use catena_seabed::rq::Mode;
+use plotters::prelude::*;
+
+use catena::AppError;
+
+static FONT: &[u8] = include_bytes!("../../../../assets/DejaVuSans.ttf");
+static INIT: Once = Once::new();
+
+/// Registers the embedded font under the name `sans-serif` (once).
+pub fn init_fonts() {
+    INIT.call_once(|| {
+        // The font is embedded and valid; a failure would only mean text is not drawn.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// The colour of a contact mode (the paper's Figure 2: blue backbone, green uplift, purple
+/// repenetration; grey out of contact).
+pub fn mode_colour(m: Mode) -> RGBColor {
+    match m {
+        Mode::NotInContact => RGBColor(140, 140, 140),
+        Mode::InitialPenetration => RGBColor(20, 90, 200),
+        Mode::Uplift => RGBColor(20, 150, 40),
+        Mode::Repenetration => RGBColor(150, 30, 170),
+    }
+}
+
+pub(crate) fn plot_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> AppError + '_ {
+    move |e| AppError::Plot {
+        path: path.to_path_buf(),
+        message: plain_message(&e.to_string()),
+    }
+}
+
+/// The plotting backend's error in words: its text is Rust debug output (`ImageError(IoError(Os {
+/// … message: "No such file or directory" }))`); the system's message is taken out of it, and an
+/// unknown image format becomes what to do.
+fn plain_message(raw: &str) -> String {
+    if let Some(i) = raw.find("message: \"") {
+        let rest = &raw[i + 10..];
+        let text = rest.split('"').next().unwrap_or(rest);
+        return format!("cannot write the image: {text}");
+    }
+    if raw.contains("Unsupported") {
+        return "cannot write the image: the file name must end in .png".into();
+    }
+    raw.to_string()
+}
+
+/// A white RGB canvas (three bytes a pixel) made ahead of the plot that draws on it.
+///
+/// Making and whitening the pixels of a large plot (8 MB for `dynamic.png`) takes as long as
+/// drawing its curves: `catena run` makes the canvases of its two large plots on another thread
+/// while the dynamics step ([`Canvas::white`]), and the plots, drawn after the run, start on them.
+/// A plot given no canvas, or one too small, makes its own.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Canvas(Vec<u8>);
+
+impl Canvas {
+    /// A white canvas with room for `width × height` pixels.
+    pub fn white((width, height): (u32, u32)) -> Self {
+        Self(vec![255; 3 * width as usize * height as usize])
+    }
+}
+
+/// The grid's major lines: the grey that plotters' default for them, black at 20 % opacity,
+/// blends to on white, drawn opaque.
+///
+/// Translucent lines are blended into the canvas pixel by pixel, and a plot's dense minor grid
+/// (up to ten lines between two labels) made the blending a fifth of the drawing: about 9 ms of
+/// `catena run`'s three plots of the heave benchmark, two of them after the run
+/// (`benches/README.md`). Opaque lines are filled a row at a time. The grid looks the same; only
+/// where two of its lines cross is the pixel no longer darker than either.
+pub const GRID_BOLD: RGBColor = RGBColor(204, 204, 204);
+
+/// The grid's minor lines: black at 10 % opacity on white, drawn opaque (see [`GRID_BOLD`]).
+pub const GRID_LIGHT: RGBColor = RGBColor(230, 230, 230);
+
+/// A chart's grid in [`GRID_BOLD`] and [`GRID_LIGHT`]: `chart.configure_mesh().opaque_grid()`.
+pub trait OpaqueGrid {
+    /// Sets the grid's major and minor lines to the opaque greys.
+    fn opaque_grid(&mut self) -> &mut Self;
+}
+
+impl<X, Y, DB> OpaqueGrid for plotters::chart::MeshStyle<'_, '_, X, Y, DB>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+    DB: DrawingBackend,
+{
+    fn opaque_grid(&mut self) -> &mut Self {
+        self.bold_line_style(GRID_BOLD).light_line_style(GRID_LIGHT)
+    }
+}
+
+/// The size of [`dynamic`]'s plot.
+pub const DYNAMIC_SIZE: (u32, u32) = (1800, 1500);
+
+/// The largest size of [`ranges`]' plot: every quantity of [`catena::observe::RANGE_QUANTITIES`]
+/// present.
+pub const RANGES_MAX_SIZE: (u32, u32) = ranges_size(catena::observe::RANGE_QUANTITIES.len());
+
+/// The size of [`ranges`]' plot of `quantities` range graphs (two to a row).
+const fn ranges_size(quantities: usize) -> (u32, u32) {
+    (2400, 50 + 420 * quantities.div_ceil(2) as u32)
+}
+
+/// The white pixels a plot of `size` draws on: the first `width × height` of `canvas` when it
+/// has room for them, else new ones.
+pub(crate) fn pixels((width, height): (u32, u32), canvas: Option<Canvas>) -> Vec<u8> {
+    let n = 3 * width as usize * height as usize;
+    match canvas {
+        Some(Canvas(mut v)) if v.len() >= n => {
+            v.truncate(n);
+            v
+        }
+        _ => vec![255; n],
+    }
+}
+
+/// Writes the RGB pixels `rgb` (`width × height`) to `path`, its format from its extension.
+///
+/// A `.png` is written with the fast deflate and the Paeth filter on every row: the same pixels
+/// as the image crate's default (the fast deflate with an adaptive filter tried row by row), in
+/// files 2–3 % larger, written in two thirds of the time (4.1 against 6.3 ms for the heave
+/// benchmark's `dynamic.png`, measured 2026-11-26). Any other extension goes to the image crate's
+/// encoder for it, as plotters would.
+pub(crate) fn write_image(
+    path: &Path,
+    rgb: &[u8],
+    (width, height): (u32, u32),
+) -> Result<(), AppError> {
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    use image::ImageEncoder;
+    // The error's debug text, as plotters gives it (see `plain_message`).
+    let err = |e: &dyn std::fmt::Debug| AppError::Plot {
+        path: path.to_path_buf(),
+        message: plain_message(&format!("{e:?}")),
+    };
+    let rgb = &rgb[..3 * width as usize * height as usize];
+    let is_png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return image::save_buffer(path, rgb, width, height, image::ColorType::Rgb8)
+            .map_err(|e| err(&e));
+    }
+    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+    PngEncoder::new_with_quality(&mut w, CompressionType::Fast, FilterType::Paeth)
+        .write_image(rgb, width, height, image::ColorType::Rgb8)
+        .map_err(|e| err(&e))?;
+    std::io::Write::flush(&mut w).map_err(|e| err(&e))
+}
+
+#[cfg(test)]
+mod message_tests {
+    #[test]
+    fn backend_errors_are_put_in_words() {
+        let io = r#"backend error: Drawing backend error: ImageError(IoError(Os { code: 2, kind: NotFound, message: "No such file or directory" }))"#;
+        assert_eq!(
+            super::plain_message(io),
+            "cannot write the image: No such file or directory"
+        );
+        let fmt = "backend error: Drawing backend error: ImageError(Unsupported(UnsupportedError { format: Unknown, kind: Format(Unknown) }))";
+        assert!(super::plain_message(fmt).ends_with("must end in .png"));
+    }
+}
+
+/// Pads a range by 5 % on each side (and widens an empty one).
+pub fn padded(lo: f64, hi: f64) -> (f64, f64) {
+    let span = (hi - lo)
+        .abs()
+        .max(1e-9 * hi.abs().max(lo.abs()).max(1e-12));
+    (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+/// How a panel draws its series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Marks {
+    /// Connected lines.
+    Lines,
+    /// Separate dots.
+    Points,
+}
+
+/// The x and y ranges of the finite points (within `x_range` if given, which is then the x range),
+/// padded by 5 %; a unit box if there is none.
+fn data_box(
+    points: impl Iterator<Item = (f64, f64)>,
+    x_range: Option<(f64, f64)>,
+) -> ((f64, f64), (f64, f64)) {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for (x, y) in points {
+        let inside = x_range.is_none_or(|(a, b)| x >= a && x <= b);
+        if x.is_finite() && y.is_finite() && inside {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let xr = x_range.unwrap_or_else(|| padded(x0, x1));
+    (xr, padded(y0, y1))
+}
+
+/// A captioned chart with labelled axes over the given ranges (the house style of every panel).
+fn framed_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    axes: (&str, &str),
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    framed_chart_sized(area, caption, axes, x, y, 18)
+}
+
+/// [`framed_chart`] with the caption's font size.
+fn framed_chart_sized<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    (xlabel, ylabel): (&str, &str),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    caption_size: u32,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", caption_size))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .opaque_grid()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
+/// A labelled line for [`legend_panel`].
+struct Labelled<'a> {
+    points: Vec<(f64, f64)>,
+    colour: RGBColor,
+    label: &'a str,
+}
+
+/// Draws one panel of labelled lines with a legend, optional vertical markers `(x, label, colour)`
+/// drawn dashed across the panel, and an optional x range (else the data's).
+fn legend_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    axes: (&str, &str),
+    series: &[Labelled<'_>],
+    markers: &[(f64, &str, RGBColor)],
+    x_range: Option<(f64, f64)>,
+) -> Result<(), String> {
+    lines_panel(area, caption, axes, series, markers, x_range, true)
+}
+
+/// [`legend_panel`], with the legend drawn or not (a figure of many panels shares one legend).
+fn lines_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    (xlabel, ylabel): (&str, &str),
+    series: &[Labelled<'_>],
+    markers: &[(f64, &str, RGBColor)],
+    x_range: Option<(f64, f64)>,
+    legend: bool,
+) -> Result<(), String> {
+    let ((x0, x1), (y0, y1)) = data_box(
+        series.iter().flat_map(|s| s.points.iter().copied()),
+        x_range,
+    );
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), (x0, x1), (y0, y1))?;
+    for s in series {
+        let c = s.colour;
+        let drawn = chart
+            .draw_series(LineSeries::new(
+                s.points
+                    .iter()
+                    .copied()
+                    .filter(|(x, _)| x_range.is_none_or(|(a, b)| *x >= a && *x <= b)),
+                c.stroke_width(2),
+            ))
+            .map_err(|e| e.to_string())?;
+        // An unlabelled line (a repeat of one listed) is drawn, not listed.
+        if !s.label.is_empty() {
+            drawn.label(s.label).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3))
+            });
+        }
+    }
+    for &(x, label, c) in markers {
+        if !(x.is_finite() && x >= x0 && x <= x1) {
+            continue;
+        }
+        let n = 40;
+        let dash = (0..n).filter(|k| k % 2 == 0).map(move |k| {
+            let a = y0 + (y1 - y0) * k as f64 / n as f64;
+            let b = y0 + (y1 - y0) * (k + 1) as f64 / n as f64;
+            PathElement::new(vec![(x, a), (x, b)], c.stroke_width(2))
+        });
+        let drawn = chart.draw_series(dash).map_err(|e| e.to_string())?;
+        if label.is_empty() {
+            // A repeated marker (the second section boundary on): drawn, not listed again.
+            continue;
+        }
+        drawn.label(label).legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + 8, y), (x + 12, y), (x + 20, y)],
+                c.stroke_width(2),
+            )
+        });
+    }
+    if legend {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// A legend strip across a figure: a short line (dashed for a marker) and its label per entry.
+fn legend_strip<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(&str, RGBColor, bool)],
+) -> Result<(), String> {
+    let (w, h) = area.dim_in_pixel();
+    let y = h as i32 / 2;
+    let step = (w as i32 - 40) / entries.len().max(1) as i32;
+    for (k, (label, c, dashed)) in entries.iter().enumerate() {
+        let x = 20 + k as i32 * step;
+        if *dashed {
+            for d in 0..3 {
+                area.draw(&PathElement::new(
+                    vec![(x + 14 * d, y), (x + 14 * d + 8, y)],
+                    c.stroke_width(3),
+                ))
+                .map_err(|e| e.to_string())?;
+            }
+        } else {
+            area.draw(&PathElement::new(
+                vec![(x, y), (x + 36, y)],
+                c.stroke_width(3),
+            ))
+            .map_err(|e| e.to_string())?;
+        }
+        area.draw(&Text::new(
+            label.to_string(),
+            (x + 44, y - 9),
+            ("sans-serif", 18).into_font(),
+        ))
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// Draws one panel: `series` of (x, y) lines with a caption and axis labels.
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    marked_panel(area, caption, xlabel, ylabel, series, Marks::Lines)
+}
+
+/// Draws one panel of lines with equal scales on both axes (a metre is as long across as up): the
+/// data box of the shorter side widened about its centre to the plotting area's proportions.
+fn scaled_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+) -> Result<(), String> {
+    let ((x0, x1), (y0, y1)) = data_box(series.iter().flat_map(|(v, _)| v.iter().copied()), None);
+    // The plotting area inside `framed_chart`'s margins, label areas and caption.
+    let (w, h) = area.dim_in_pixel();
+    let (wp, hp) = (
+        (w as f64 - 2.0 * 12.0 - 75.0).max(1.0),
+        (h as f64 - 2.0 * 12.0 - 45.0 - 30.0).max(1.0),
+    );
+    let u = ((x1 - x0) / wp).max((y1 - y0) / hp);
+    let (xc, yc) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let xr = (xc - 0.5 * u * wp, xc + 0.5 * u * wp);
+    let yr = (yc - 0.5 * u * hp, yc + 0.5 * u * hp);
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
+    for (v, c) in series {
+        chart
+            .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// Draws one panel of lines or dots, scaled to the finite data (a unit box if there is none).
+fn marked_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[(Vec<(f64, f64)>, RGBColor)],
+    marks: Marks,
+) -> Result<(), String> {
+    let (xr, yr) = data_box(series.iter().flat_map(|(v, _)| v.iter().copied()), None);
+    let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
+    for (v, c) in series {
+        match marks {
+            Marks::Lines => chart
+                .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+                .map(|_| ()),
+            Marks::Points => chart
+                .draw_series(v.iter().map(|p| Circle::new(*p, 2, c.filled())))
+                .map(|_| ()),
+        }
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
