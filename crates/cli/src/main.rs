@@ -265,7 +265,18 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
+    match dispatch(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs one command, its text printed on standard output.
+fn dispatch(command: Command) -> Result<(), catena::AppError> {
+    match command {
         Command::Calibrate {
             test,
             law,
@@ -294,13 +305,7 @@ fn main() -> ExitCode {
             restart,
             compress,
         } => {
-            // SIGINT and SIGTERM end the run at the next converged step; its records are flushed
-            // and summary.json says where it stopped.
-            let stop = Arc::new(AtomicBool::new(false));
-            let flag = stop.clone();
-            if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)) {
-                eprintln!("warning: cannot catch SIGINT/SIGTERM ({e}); an interrupted run keeps its records up to the last flush");
-            }
+            let stop = Some(stop_on_signal());
             commands::run(
                 &case,
                 &out,
@@ -308,7 +313,7 @@ fn main() -> ExitCode {
                     progress: !quiet,
                     checkpoint_every,
                     restart,
-                    stop: Some(stop),
+                    stop,
                     stop_after: None,
                     compress: match compress.as_str() {
                         "yes" => Some(true),
@@ -416,12 +421,16 @@ fn main() -> ExitCode {
         .map(|t| print!("{t}")),
         Command::Check { case } => commands::check(&case).map(|t| print!("{t}")),
         Command::Static { case, out } => commands::static_(&case, &out).map(|t| print!("{t}")),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
     }
+}
+
+/// SIGINT and SIGTERM end a run at its next converged step; its records are flushed and
+/// summary.json says where it stopped.
+fn stop_on_signal() -> Arc<AtomicBool> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)) {
+        eprintln!("warning: cannot catch SIGINT/SIGTERM ({e}); an interrupted run keeps its records up to the last flush");
+    }
+    stop
 }

@@ -286,80 +286,8 @@ impl Sequence {
         if table.storm.is_empty() {
             return Err(invalid(&file, "sequence.storms", "at least one [[storm]]").into());
         }
-        for (i, st) in table.storm.iter().enumerate() {
-            check_sea(&sfile, i, st.hs, st.tp)?;
-            if !(st.probability.is_finite() && (0.0..=1.0).contains(&st.probability)) {
-                return Err(invalid(
-                    &sfile,
-                    format!("storm[{i}].probability"),
-                    "a fraction of the year in [0, 1]",
-                )
-                .into());
-            }
-            if table.storm[..i].iter().any(|o| o.id == st.id) {
-                return Err(invalid(&sfile, format!("storm[{i}].id"), "a unique id").into());
-            }
-        }
-        let order: Vec<usize> = match (&s.order, &s.random) {
-            (Some(ids), None) => {
-                if ids.is_empty() {
-                    return Err(invalid(&file, "sequence.order", "at least one storm id").into());
-                }
-                ids.iter()
-                    .enumerate()
-                    .map(|(k, id)| {
-                        table
-                            .storm
-                            .iter()
-                            .position(|st| st.id == *id)
-                            .ok_or_else(|| {
-                                AppError::from(invalid(
-                                    &file,
-                                    format!("sequence.order[{k}]"),
-                                    format!(
-                                        "the id of a storm in {sfile} (there is no storm {id})"
-                                    ),
-                                ))
-                            })
-                    })
-                    .collect::<Result<_, _>>()?
-            }
-            (None, Some(r)) => {
-                let every = r.every_storm.unwrap_or(true);
-                let least = if every { table.storm.len() } else { 1 };
-                if r.visits < least {
-                    return Err(invalid(
-                        &file,
-                        "sequence.random.visits",
-                        format!(
-                            "at least {least} visits ({})",
-                            if every {
-                                "one per storm of the table: every_storm = true"
-                            } else {
-                                "one"
-                            }
-                        ),
-                    )
-                    .into());
-                }
-                let p: Vec<f64> = table.storm.iter().map(|st| st.probability).collect();
-                if p.iter().sum::<f64>() <= 0.0 {
-                    return Err(invalid(
-                        &sfile,
-                        "storm[*].probability",
-                        "probabilities that are not all zero (a random order draws by them)",
-                    )
-                    .into());
-                }
-                random_order(&p, r.visits, r.seed, every)
-            }
-            _ => return Err(invalid(
-                &file,
-                "sequence.order",
-                "either `order = [storm ids]` or a [sequence.random] table, not both or neither",
-            )
-            .into()),
-        };
+        check_storms(&sfile, &table)?;
+        let order = storm_order(&file, &sfile, s, &table)?;
         for (k, &i) in order.iter().enumerate() {
             let t = table.storm[i].duration.unwrap_or(s.record);
             if !(t.is_finite() && t > 0.0) {
@@ -600,4 +528,93 @@ pub fn annual_damage(results: &[VisitResult], fibre: &str) -> Vec<f64> {
             }),
         fibre,
     )
+}
+
+/// Each storm of the table checked: its sea state, a probability in [0, 1] and a unique id.
+fn check_storms(sfile: &str, table: &StormsFile) -> Result<(), AppError> {
+    for (i, st) in table.storm.iter().enumerate() {
+        check_sea(sfile, i, st.hs, st.tp)?;
+        if !(st.probability.is_finite() && (0.0..=1.0).contains(&st.probability)) {
+            return Err(invalid(
+                sfile,
+                format!("storm[{i}].probability"),
+                "a fraction of the year in [0, 1]",
+            )
+            .into());
+        }
+        if table.storm[..i].iter().any(|o| o.id == st.id) {
+            return Err(invalid(sfile, format!("storm[{i}].id"), "a unique id").into());
+        }
+    }
+    Ok(())
+}
+
+/// The visits' order: the storms named in `order`, or drawn by their probabilities
+/// (`[sequence.random]`), as indices into the table.
+fn storm_order(
+    file: &str,
+    sfile: &str,
+    s: &SequenceTable,
+    table: &StormsFile,
+) -> Result<Vec<usize>, AppError> {
+    Ok(match (&s.order, &s.random) {
+        (Some(ids), None) => {
+            if ids.is_empty() {
+                return Err(invalid(file, "sequence.order", "at least one storm id").into());
+            }
+            ids.iter()
+                .enumerate()
+                .map(|(k, id)| {
+                    table
+                        .storm
+                        .iter()
+                        .position(|st| st.id == *id)
+                        .ok_or_else(|| {
+                            AppError::from(invalid(
+                                file,
+                                format!("sequence.order[{k}]"),
+                                format!("the id of a storm in {sfile} (there is no storm {id})"),
+                            ))
+                        })
+                })
+                .collect::<Result<_, _>>()?
+        }
+        (None, Some(r)) => {
+            let every = r.every_storm.unwrap_or(true);
+            let least = if every { table.storm.len() } else { 1 };
+            if r.visits < least {
+                return Err(invalid(
+                    file,
+                    "sequence.random.visits",
+                    format!(
+                        "at least {least} visits ({})",
+                        if every {
+                            "one per storm of the table: every_storm = true"
+                        } else {
+                            "one"
+                        }
+                    ),
+                )
+                .into());
+            }
+            let p: Vec<f64> = table.storm.iter().map(|st| st.probability).collect();
+            if p.iter().sum::<f64>() <= 0.0 {
+                return Err(invalid(
+                    sfile,
+                    "storm[*].probability",
+                    "probabilities that are not all zero (a random order draws by them)",
+                )
+                .into());
+            }
+            random_order(&p, r.visits, r.seed, every)
+        }
+        _ => {
+            return Err(invalid(
+                file,
+                "sequence.order",
+                "either `order = [storm ids]` or a [sequence.random] table, not both or neither",
+            )
+            .into())
+        }
+    })
 }

@@ -154,45 +154,7 @@ impl SoilTestCase {
                 format!("a finite step > 0 (got {})", t.step),
             ));
         }
-        // The test's size, before any leg is built: increments along the waypoints, then each
-        // cycle's legs (a `to` leg bounded by its target's distance from the largest value seen).
-        let mut increments: f64 = t
-            .waypoints
-            .windows(2)
-            .map(|w| (w[1] - w[0]).abs() / t.step)
-            .sum();
-        let mut largest = t.waypoints.iter().fold(0.0f64, |m, w| m.max(w.abs()));
-        let mut leg_count = t.waypoints.len() as f64;
-        let limit = |increments: f64, legs: f64, key: String| -> Result<(), SceneError> {
-            if increments > MAX_INCREMENTS || legs > MAX_INCREMENTS {
-                Err(invalid(
-                    file,
-                    key,
-                    format!(
-                        "a test of at most {MAX_INCREMENTS:e} increments and legs (this one asks for about {:.1e}); check the steps and cycle counts",
-                        increments.max(legs)
-                    ),
-                ))
-            } else {
-                Ok(())
-            }
-        };
-        limit(increments, leg_count, "test.step".into())?;
-        for (ci, c) in t.cycles.iter().enumerate() {
-            let ck = format!("test.cycles[{ci}]");
-            let mut per_cycle = 0.0;
-            for l in &c.legs {
-                let step = l.step.unwrap_or(t.step);
-                let v = l.to.or(l.by).unwrap_or(0.0);
-                if step > 0.0 {
-                    per_cycle += (v.abs() + largest) / step;
-                }
-                largest = largest.max(v.abs());
-            }
-            increments += c.count as f64 * per_cycle;
-            leg_count += c.count as f64 * c.legs.len() as f64;
-            limit(increments, leg_count, format!("{ck}.count"))?;
-        }
+        check_size(file, t)?;
         let mut legs = element_test::legs_through(t.control.into(), &t.waypoints, t.step);
         let mut origins: Vec<String> = (0..legs.len())
             .map(|i| format!("test.waypoints[{i}]"))
@@ -211,52 +173,7 @@ impl SoilTestCase {
             if c.legs.is_empty() {
                 return Err(invalid(file, format!("{ck}.legs"), "at least one leg"));
             }
-            let mut cycle_legs = Vec::with_capacity(c.legs.len());
-            for (li, l) in c.legs.iter().enumerate() {
-                let lk = format!("{ck}.legs[{li}]");
-                let control = l.control.unwrap_or(t.control);
-                let target = match (l.to, l.by) {
-                    (Some(v), None) => Target::To(v),
-                    (None, Some(v)) => Target::By(v),
-                    _ => {
-                        return Err(invalid(
-                            file,
-                            lk,
-                            "exactly one of `to` (a target) or `by` (a change)",
-                        ))
-                    }
-                };
-                let (Target::To(v) | Target::By(v)) = target;
-                if !v.is_finite() {
-                    return Err(invalid(file, lk, "a finite target"));
-                }
-                let step = match l.step {
-                    Some(s) => s,
-                    None if control == t.control => t.step,
-                    None => {
-                        return Err(invalid(
-                            file,
-                            format!("{lk}.step"),
-                            "a step for this leg (its control differs from test.control)",
-                        ))
-                    }
-                };
-                if !(step.is_finite() && step > 0.0) {
-                    return Err(invalid(
-                        file,
-                        format!("{lk}.step"),
-                        format!("a finite step > 0 (got {step})"),
-                    ));
-                }
-                cycle_legs.push((
-                    Leg {
-                        control: control.into(),
-                        target,
-                        step,
-                    },
-                    lk,
-                ));
-            }
+            let cycle_legs = cycle_legs(file, t, &ck, c)?;
             for _ in 0..c.count {
                 cycle_no += 1;
                 for (leg, lk) in &cycle_legs {
@@ -316,4 +233,104 @@ impl SoilTestCase {
             r.rows[r.leg_ends[n - 1]].z
         }
     }
+}
+
+/// The test's size, before any leg is built: increments along the waypoints, then each cycle's
+/// legs (a `to` leg bounded by its target's distance from the largest value seen), each at most
+/// [`MAX_INCREMENTS`].
+fn check_size(file: &str, t: &TestTable) -> Result<(), SceneError> {
+    let mut increments: f64 = t
+        .waypoints
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs() / t.step)
+        .sum();
+    let mut largest = t.waypoints.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+    let mut leg_count = t.waypoints.len() as f64;
+    let limit = |increments: f64, legs: f64, key: String| -> Result<(), SceneError> {
+        if increments > MAX_INCREMENTS || legs > MAX_INCREMENTS {
+            Err(invalid(
+                file,
+                key,
+                format!(
+                    "a test of at most {MAX_INCREMENTS:e} increments and legs (this one asks for about {:.1e}); check the steps and cycle counts",
+                    increments.max(legs)
+                ),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    limit(increments, leg_count, "test.step".into())?;
+    for (ci, c) in t.cycles.iter().enumerate() {
+        let ck = format!("test.cycles[{ci}]");
+        let mut per_cycle = 0.0;
+        for l in &c.legs {
+            let step = l.step.unwrap_or(t.step);
+            let v = l.to.or(l.by).unwrap_or(0.0);
+            if step > 0.0 {
+                per_cycle += (v.abs() + largest) / step;
+            }
+            largest = largest.max(v.abs());
+        }
+        increments += c.count as f64 * per_cycle;
+        leg_count += c.count as f64 * c.legs.len() as f64;
+        limit(increments, leg_count, format!("{ck}.count"))?;
+    }
+    Ok(())
+}
+
+/// One cycle's legs, each checked, with its key (`test.cycles[i].legs[j]`).
+fn cycle_legs(
+    file: &str,
+    t: &TestTable,
+    ck: &str,
+    c: &CycleTable,
+) -> Result<Vec<(Leg, String)>, SceneError> {
+    let mut cycle_legs = Vec::with_capacity(c.legs.len());
+    for (li, l) in c.legs.iter().enumerate() {
+        let lk = format!("{ck}.legs[{li}]");
+        let control = l.control.unwrap_or(t.control);
+        let target = match (l.to, l.by) {
+            (Some(v), None) => Target::To(v),
+            (None, Some(v)) => Target::By(v),
+            _ => {
+                return Err(invalid(
+                    file,
+                    lk,
+                    "exactly one of `to` (a target) or `by` (a change)",
+                ))
+            }
+        };
+        let (Target::To(v) | Target::By(v)) = target;
+        if !v.is_finite() {
+            return Err(invalid(file, lk, "a finite target"));
+        }
+        let step = match l.step {
+            Some(s) => s,
+            None if control == t.control => t.step,
+            None => {
+                return Err(invalid(
+                    file,
+                    format!("{lk}.step"),
+                    "a step for this leg (its control differs from test.control)",
+                ))
+            }
+        };
+        if !(step.is_finite() && step > 0.0) {
+            return Err(invalid(
+                file,
+                format!("{lk}.step"),
+                format!("a finite step > 0 (got {step})"),
+            ));
+        }
+        cycle_legs.push((
+            Leg {
+                control: control.into(),
+                target,
+                step,
+            },
+            lk,
+        ));
+    }
+    Ok(cycle_legs)
 }

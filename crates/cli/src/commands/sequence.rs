@@ -162,26 +162,7 @@ pub fn run(path: &Path, out: &Path, jobs: usize, progress: bool) -> Result<Strin
     for d in [&vdir, &ldir] {
         std::fs::create_dir_all(d).map_err(|e| AppError::io(d, e))?;
     }
-    let alongside = seq.as_laid && jobs >= 2;
-    let (memory, laid) = std::thread::scope(|sc| {
-        let laid = alongside.then(|| sc.spawn(|| as_laid(&seq, &ldir, jobs - 1, progress)));
-        let memory = chain(&seq, &vdir, progress, t0);
-        let laid = laid.map(|h| {
-            h.join().unwrap_or_else(|_| {
-                Err(AppError::Run {
-                    file: seq.file.clone(),
-                    message: "the as-laid runs' thread failed".into(),
-                })
-            })
-        });
-        (memory, laid)
-    });
-    let (memory, resumed) = memory?;
-    let laid = match laid {
-        Some(r) => r?,
-        None if seq.as_laid => as_laid(&seq, &ldir, 1, progress)?,
-        None => Vec::new(),
-    };
+    let (memory, resumed, laid) = both_chains(&seq, (&vdir, &ldir), jobs, progress, t0)?;
     let fibre = memory
         .first()
         .and_then(|r| r.damage.first())
@@ -219,63 +200,15 @@ pub fn run(path: &Path, out: &Path, jobs: usize, progress: bool) -> Result<Strin
         .last()
         .map(|r| r.strength.clone())
         .unwrap_or_default();
-    // The trench and life files.
-    let mut csv = String::from("arc,as_laid");
-    for k in 0..trenches.len() {
-        csv.push_str(&format!(",after_visit_{}", k + 1));
-    }
-    csv.push('\n');
-    for (i, a) in arc.iter().enumerate() {
-        csv.push_str(&format!("{a},{}", st.results.penetration[i]));
-        for t in &trenches {
-            csv.push_str(&format!(",{}", t[i]));
-        }
-        csv.push('\n');
-    }
-    let p = out.join("trench.csv");
-    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
-    let mut csv = String::from("arc,life_memory,life_as_laid,strength_after\n");
-    for (i, a) in arc.iter().enumerate() {
-        let get = |v: &[f64]| v.get(i).map_or(String::new(), |x| format!("{x}"));
-        csv.push_str(&format!(
-            "{a},{},{},{}\n",
-            get(&l_mem),
-            get(&l_laid),
-            get(&strength)
-        ));
-    }
-    let p = out.join("life.csv");
-    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
-    let mut csv = String::from(
-        "visit,storm,hs,tp,seed,weight,damage_memory,damage_as_laid,deepest_trench,wall_seconds\n",
-    );
-    for (k, r) in memory.iter().enumerate() {
-        let dm = r
-            .damage
-            .iter()
-            .find(|(f, _)| *f == fibre)
-            .and_then(|(_, d)| d.get(i_crit))
-            .copied()
-            .unwrap_or(f64::NAN);
-        let dl = laid
-            .get(k)
-            .and_then(|l| l.damage.iter().find(|(f, _)| *f == fibre))
-            .and_then(|(_, d)| d.get(i_crit))
-            .map_or(String::new(), |x| format!("{x}"));
-        csv.push_str(&format!(
-            "{},{},{},{},{},{},{dm},{dl},{},{}\n",
-            k + 1,
-            r.visit.storm.id,
-            r.visit.storm.hs,
-            r.visit.storm.tp,
-            r.visit.storm.seed.unwrap_or_default(),
-            r.visit.weight,
-            r.trench.iter().copied().fold(0.0f64, f64::max),
-            r.wall_seconds
-        ));
-    }
-    let p = out.join("visits.csv");
-    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
+    write_trench_and_life(
+        out,
+        &arc,
+        &st.results.penetration,
+        &trenches,
+        (&l_mem, &l_laid),
+        &strength,
+    )?;
+    write_visits(out, &memory, &laid, &fibre, i_crit)?;
     let window = match touchdown {
         Some(t) => (t - 30.0, t + 120.0),
         None => (arc[0], *arc.last().unwrap_or(&1.0)),
@@ -355,4 +288,118 @@ pub fn run(path: &Path, out: &Path, jobs: usize, progress: bool) -> Result<Strin
         out.display()
     ));
     Ok(t)
+}
+
+/// `trench.csv` (the as-laid penetration and each visit's trench along the arc) and `life.csv`
+/// (the life with memory and as laid, the strength factor after the last visit).
+fn write_trench_and_life(
+    out: &Path,
+    arc: &[f64],
+    as_laid: &[f64],
+    trenches: &[Vec<f64>],
+    (l_mem, l_laid): (&[f64], &[f64]),
+    strength: &[f64],
+) -> Result<(), AppError> {
+    let mut csv = String::from("arc,as_laid");
+    for k in 0..trenches.len() {
+        csv.push_str(&format!(",after_visit_{}", k + 1));
+    }
+    csv.push('\n');
+    for (i, a) in arc.iter().enumerate() {
+        csv.push_str(&format!("{a},{}", as_laid[i]));
+        for t in trenches {
+            csv.push_str(&format!(",{}", t[i]));
+        }
+        csv.push('\n');
+    }
+    let p = out.join("trench.csv");
+    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
+    let mut csv = String::from("arc,life_memory,life_as_laid,strength_after\n");
+    for (i, a) in arc.iter().enumerate() {
+        let get = |v: &[f64]| v.get(i).map_or(String::new(), |x| format!("{x}"));
+        csv.push_str(&format!(
+            "{a},{},{},{}\n",
+            get(l_mem),
+            get(l_laid),
+            get(strength)
+        ));
+    }
+    let p = out.join("life.csv");
+    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
+    Ok(())
+}
+
+/// `visits.csv`: each visit's storm, weight, damage at the critical node with memory and as laid,
+/// deepest trench and wall time.
+fn write_visits(
+    out: &Path,
+    memory: &[VisitResult],
+    laid: &[VisitResult],
+    fibre: &str,
+    i_crit: usize,
+) -> Result<(), AppError> {
+    let mut csv = String::from(
+        "visit,storm,hs,tp,seed,weight,damage_memory,damage_as_laid,deepest_trench,wall_seconds\n",
+    );
+    for (k, r) in memory.iter().enumerate() {
+        let dm = r
+            .damage
+            .iter()
+            .find(|(f, _)| *f == fibre)
+            .and_then(|(_, d)| d.get(i_crit))
+            .copied()
+            .unwrap_or(f64::NAN);
+        let dl = laid
+            .get(k)
+            .and_then(|l| l.damage.iter().find(|(f, _)| *f == fibre))
+            .and_then(|(_, d)| d.get(i_crit))
+            .map_or(String::new(), |x| format!("{x}"));
+        csv.push_str(&format!(
+            "{},{},{},{},{},{},{dm},{dl},{},{}\n",
+            k + 1,
+            r.visit.storm.id,
+            r.visit.storm.hs,
+            r.visit.storm.tp,
+            r.visit.storm.seed.unwrap_or_default(),
+            r.visit.weight,
+            r.trench.iter().copied().fold(0.0f64, f64::max),
+            r.wall_seconds
+        ));
+    }
+    let p = out.join("visits.csv");
+    std::fs::write(&p, csv).map_err(|e| AppError::io(&p, e))?;
+    Ok(())
+}
+
+/// The visits with memory (the serial chain) and, where the scene asks for them, the as-laid
+/// visits: on the other threads alongside the chain when `jobs` is 2 or more, after it otherwise.
+/// Returns the chain's results, how many of them were resumed, and the as-laid results.
+fn both_chains(
+    seq: &Sequence,
+    (vdir, ldir): (&Path, &Path),
+    jobs: usize,
+    progress: bool,
+    t0: Instant,
+) -> Result<(Vec<VisitResult>, usize, Vec<VisitResult>), AppError> {
+    let alongside = seq.as_laid && jobs >= 2;
+    let (memory, laid) = std::thread::scope(|sc| {
+        let laid = alongside.then(|| sc.spawn(|| as_laid(seq, ldir, jobs - 1, progress)));
+        let memory = chain(seq, vdir, progress, t0);
+        let laid = laid.map(|h| {
+            h.join().unwrap_or_else(|_| {
+                Err(AppError::Run {
+                    file: seq.file.clone(),
+                    message: "the as-laid runs' thread failed".into(),
+                })
+            })
+        });
+        (memory, laid)
+    });
+    let (memory, resumed) = memory?;
+    let laid = match laid {
+        Some(r) => r?,
+        None if seq.as_laid => as_laid(seq, ldir, 1, progress)?,
+        None => Vec::new(),
+    };
+    Ok((memory, resumed, laid))
 }

@@ -1,9 +1,10 @@
 //! `catena strength`: the strength study over design storms and seeds.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use catena::statics;
+use catena::strength::StormSummary;
 use catena::AppError;
 
 use super::{resumable, write_json};
@@ -99,28 +100,7 @@ pub fn strength(
         })).collect::<Vec<_>>(),
     });
     write_json(&out.join("summary.json"), &js)?;
-    let mut csv = String::from("arc_m,static_utilisation");
-    for s in &summary {
-        let _ = write!(
-            csv,
-            ",storm{}_envelope,storm{}_mean_over_seeds",
-            s.storm.id, s.storm.id
-        );
-    }
-    csv.push('\n');
-    for (i, a) in arc.iter().enumerate() {
-        let _ = write!(csv, "{a},{}", static_u.get(i).copied().unwrap_or(f64::NAN));
-        for s in &summary {
-            let _ = write!(
-                csv,
-                ",{},{}",
-                s.utilisation_envelope[i], s.utilisation_mean[i]
-            );
-        }
-        csv.push('\n');
-    }
-    let cp = out.join("utilisation.csv");
-    std::fs::write(&cp, csv).map_err(|e| AppError::io(&cp, e))?;
+    let cp = write_utilisation(out, arc, &static_u, &summary)?;
     catena_io::plot::strength(
         &out.join("strength.png"),
         &format!("{} — strength study", study.base.title),
@@ -133,7 +113,61 @@ pub fn strength(
         "strength study {}: {n} runs ({reused} from an earlier run), {wall:.1} s wall\n",
         study.file
     );
-    for s in &summary {
+    storm_lines(&mut t, &summary, arc, quantile);
+    if !failed.is_empty() {
+        let _ = writeln!(
+            t,
+            "  {} runs STOPPED EARLY (see summary.json `failed`)",
+            failed.len()
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  wrote {}, {}, {}",
+        out.join("summary.json").display(),
+        cp.display(),
+        out.join("strength.png").display()
+    );
+    Ok(t)
+}
+
+/// `utilisation.csv`: the static utilisation along the arc and, per storm, the envelope and the
+/// mean over its seeds. Returns the file's path.
+fn write_utilisation(
+    out: &Path,
+    arc: &[f64],
+    static_u: &[f64],
+    summary: &[StormSummary],
+) -> Result<PathBuf, AppError> {
+    let mut csv = String::from("arc_m,static_utilisation");
+    for s in summary {
+        let _ = write!(
+            csv,
+            ",storm{}_envelope,storm{}_mean_over_seeds",
+            s.storm.id, s.storm.id
+        );
+    }
+    csv.push('\n');
+    for (i, a) in arc.iter().enumerate() {
+        let _ = write!(csv, "{a},{}", static_u.get(i).copied().unwrap_or(f64::NAN));
+        for s in summary {
+            let _ = write!(
+                csv,
+                ",{},{}",
+                s.utilisation_envelope[i], s.utilisation_mean[i]
+            );
+        }
+        csv.push('\n');
+    }
+    let cp = out.join("utilisation.csv");
+    std::fs::write(&cp, csv).map_err(|e| AppError::io(&cp, e))?;
+    Ok(cp)
+}
+
+/// The text summary's lines for each storm: its largest utilisation and where, and each
+/// channel's statistics across the seeds.
+fn storm_lines(t: &mut String, summary: &[StormSummary], arc: &[f64], quantile: f64) {
+    for s in summary {
         let u = &s.across_seeds[0];
         let (i, umax) = s
             .utilisation_envelope
@@ -173,19 +207,4 @@ pub fn strength(
             );
         }
     }
-    if !failed.is_empty() {
-        let _ = writeln!(
-            t,
-            "  {} runs STOPPED EARLY (see summary.json `failed`)",
-            failed.len()
-        );
-    }
-    let _ = writeln!(
-        t,
-        "  wrote {}, {}, {}",
-        out.join("summary.json").display(),
-        cp.display(),
-        out.join("strength.png").display()
-    );
-    Ok(t)
 }

@@ -109,15 +109,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
                         done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
                         return Ok(false);
                     }
-                    let r = sweep::run_one(spec);
-                    let path = dir.join(format!("{hash}.json"));
-                    let tmp = dir.join(format!("{hash}.{}.tmp", spec.id));
-                    let body = serde_json::to_string(&r).map_err(|e| AppError::Output {
-                        path: path.clone(),
-                        message: e.to_string(),
-                    })?;
-                    std::fs::write(&tmp, body).map_err(|e| AppError::io(&tmp, e))?;
-                    std::fs::rename(&tmp, &path).map_err(|e| AppError::io(&path, e))?;
+                    let r = run_and_keep(&dir, &hash, spec)?;
                     let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
                     if o.progress {
                         let el = t0.elapsed().as_secs_f64();
@@ -185,18 +177,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     let json_path = out.join("sweep.json");
     write_json(&json_path, &js)?;
     let png = out.join("sweep.png");
-    let title = format!(
-        "{} — base of a sweep of {}",
-        match &plan.base {
-            sweep::Base::Study(s) => s.base.title.clone(),
-            sweep::Base::Scene(s) => s.title.clone(),
-        },
-        plan.parameters
-            .iter()
-            .map(|p| p.key.as_str())
-            .collect::<Vec<_>>()
-            .join(" × ")
-    );
+    let title = figure_title(&plan);
     catena_io::sweep::figure(&png, &plan, &points, &title)?;
     let failed = points.iter().filter(|p| p.failed.is_some()).count();
     let _ = writeln!(
@@ -225,4 +206,39 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
         );
     }
     Ok(text)
+}
+
+/// Runs one point of the sweep and writes its result atomically to `DIR/runs/<hash>.json`.
+fn run_and_keep(
+    dir: &Path,
+    hash: &str,
+    spec: &catena::sweep::RunSpec,
+) -> Result<catena::sweep::RunResult, AppError> {
+    let r = catena::sweep::run_one(spec);
+    let path = dir.join(format!("{hash}.json"));
+    let tmp = dir.join(format!("{hash}.{}.tmp", spec.id));
+    let body = serde_json::to_string(&r).map_err(|e| AppError::Output {
+        path: path.clone(),
+        message: e.to_string(),
+    })?;
+    std::fs::write(&tmp, body).map_err(|e| AppError::io(&tmp, e))?;
+    std::fs::rename(&tmp, &path).map_err(|e| AppError::io(&path, e))?;
+    Ok(r)
+}
+
+/// The sweep figure's title: the base scene's and the swept keys.
+fn figure_title(plan: &catena::sweep::Plan) -> String {
+    use catena::sweep;
+    format!(
+        "{} — base of a sweep of {}",
+        match &plan.base {
+            sweep::Base::Study(s) => s.base.title.clone(),
+            sweep::Base::Scene(s) => s.title.clone(),
+        },
+        plan.parameters
+            .iter()
+            .map(|p| p.key.as_str())
+            .collect::<Vec<_>>()
+            .join(" × ")
+    )
 }

@@ -126,13 +126,26 @@ pub fn dynamic_on(path: &Path, r: &DynamicRun, canvas: Option<Canvas>) -> Result
             .zip(&r.top.top_tension)
             .map(|(t, v)| (*t, v * 1e-3))
             .collect();
+        // A long record: the whole (a band per pixel column) and the 100 s around its largest value.
+        let (whole, window) = areas[5].split_horizontally(areas[5].dim_in_pixel().0 * 3 / 5);
         legend_panel(
-            &areas[5],
+            &whole,
             "top tension",
             ("time (s)", "T_top (kN)"),
-            &[lab(th, blue, "top effective tension")],
+            &[lab(th.clone(), blue, "top effective tension")],
             &[(r.spec.envelope_start, "envelopes start", grey)],
             None,
+        )
+        .map_err(&perr)?;
+        let (near, _) = window_around_peak(&th, 100.0);
+        lines_panel(
+            &window,
+            "100 s around the largest top tension",
+            ("time (s)", "T_top (kN)"),
+            &[lab(near, blue, "")],
+            &[],
+            None,
+            false,
         )
         .map_err(&perr)?;
     }

@@ -192,6 +192,52 @@ mod message_tests {
     }
 }
 
+#[cfg(test)]
+mod tick_tests {
+    use plotters::coord::ranged1d::Ranged;
+    use plotters::coord::types::RangedCoordf64;
+    use plotters::prelude::*;
+
+    /// The shared axis drawn at 1e-9, 1 and 1e9 (ranges from zero, narrow ranges far from zero as
+    /// a tension record's, ranges across zero): the labels of the ticks plotters puts on the axis
+    /// are all different, none is `0` but at zero, each reads back within a fifth of a tick
+    /// spacing of its value, and none is longer than 9 characters (they fit the label area).
+    #[test]
+    fn tick_labels_read_at_every_magnitude() {
+        super::init_fonts();
+        for scale in [1e-9, 1.0, 1e9] {
+            for (lo, hi) in [(0.0, 3.0), (1.395, 1.44), (-2.0, 5.0), (0.0, 0.012)] {
+                let (lo, hi) = (lo * scale, hi * scale);
+                let size = (400, 300);
+                let mut rgb = super::pixels(size, None);
+                {
+                    let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+                    super::framed_chart(&root, "ticks", ("x", "y"), (lo, hi), (lo, hi))
+                        .expect("the axis draws");
+                }
+                assert!(rgb.iter().any(|&b| b < 128), "labels drawn at {scale:e}");
+                let f = super::ticks(lo, hi);
+                let keys = RangedCoordf64::from(lo..hi).key_points(10);
+                assert!(keys.len() >= 3, "{lo:e}..{hi:e}: {keys:?}");
+                let spacing = keys[1] - keys[0];
+                let labels: Vec<String> = keys.iter().map(|k| f(k)).collect();
+                for (k, l) in keys.iter().zip(&labels) {
+                    let back: f64 = l.parse().unwrap_or_else(|_| panic!("{l} parses"));
+                    assert!(
+                        (back - k).abs() <= 0.2 * spacing,
+                        "{lo:e}..{hi:e}: {k:e} reads {l}"
+                    );
+                    assert!(l.len() <= 9, "{lo:e}..{hi:e}: {l} is too long");
+                    assert!(*k == 0.0 || l != "0", "{lo:e}..{hi:e}: {k:e} reads 0");
+                }
+                for w in labels.windows(2) {
+                    assert_ne!(w[0], w[1], "{lo:e}..{hi:e}: neighbouring ticks read alike");
+                }
+            }
+        }
+    }
+}
+
 /// Pads a range by 5 % on each side (and widens an empty one).
 pub fn padded(lo: f64, hi: f64) -> (f64, f64) {
     let span = (hi - lo)
@@ -278,15 +324,148 @@ fn framed_chart_sized<'a, DB: DrawingBackend>(
         .y_label_area_size(75)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(|e| e.to_string())?;
+    let (fx, fy) = (ticks(x0, x1), ticks(y0, y1));
+    // About one label to 90 pixels, so that a narrow panel's labels do not run together.
+    let x_labels = (chart.plotting_area().dim_in_pixel().0 as usize / 90).clamp(3, 10);
     chart
         .configure_mesh()
         .opaque_grid()
+        .x_labels(x_labels)
         .x_desc(xlabel)
         .y_desc(ylabel)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(|e| e.to_string())?;
     Ok(chart)
+}
+
+/// The tick labels of a linear axis from `lo` to `hi`, readable at any magnitude: plain decimals
+/// with as many places as the tick spacing needs (`0.25`, `1400`) while the axis' largest value is
+/// between 1e-3 and 1e5, scientific notation with as many digits as neighbouring ticks need to
+/// differ (`1.2e-7`, `1.395e6`) outside it. Zero is `0`. Every figure's axes use it (through
+/// [`framed_chart`], or directly as `x_label_formatter(&ticks(lo, hi))`).
+pub fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let big = lo.abs().max(hi.abs());
+    let span = (hi - lo).abs();
+    // plotters puts about ten ticks on an axis: their spacing's decade.
+    let step = if span > 0.0 && span.is_finite() {
+        span / 10.0
+    } else {
+        big.max(1e-300)
+    };
+    let step_exp = step.log10().floor();
+    let scientific = big > 0.0 && !(1e-3..1e5).contains(&big);
+    let digits = if big > 0.0 {
+        (big.log10().floor() - step_exp).clamp(0.0, 8.0) as usize
+    } else {
+        0
+    };
+    let decimals = (-step_exp).clamp(0.0, 9.0) as usize;
+    move |&v: &f64| {
+        if v == 0.0 || (span > 0.0 && v.abs() < 1e-9 * span) {
+            "0".to_string()
+        } else if scientific {
+            format!("{v:.digits$e}")
+        } else {
+            format!("{v:.decimals$}")
+        }
+    }
+}
+
+/// A chart of two linear f64 axes, as every panel here draws on.
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Each pixel column's least and greatest value and the mean of its points, `(x, min, max,
+/// mean)`, for a series sorted by x drawn `columns` pixels wide over `(x0, x1)`. Empty columns are
+/// left out.
+pub fn column_bands(points: &[(f64, f64)], (x0, x1): (f64, f64), columns: usize) -> Vec<[f64; 4]> {
+    let columns = columns.max(1);
+    let width = (x1 - x0) / columns as f64;
+    let mut out: Vec<[f64; 4]> = Vec::with_capacity(columns);
+    let mut current: Option<(usize, f64, f64, f64, usize)> = None;
+    let close = |c: (usize, f64, f64, f64, usize), out: &mut Vec<[f64; 4]>| {
+        let x = x0 + (c.0 as f64 + 0.5) * width;
+        out.push([x, c.1, c.2, c.3 / c.4 as f64]);
+    };
+    for &(x, y) in points.iter().filter(|p| p.1.is_finite()) {
+        let k = (((x - x0) / width).floor().max(0.0) as usize).min(columns - 1);
+        current = match current {
+            Some(c) if c.0 == k => Some((k, c.1.min(y), c.2.max(y), c.3 + y, c.4 + 1)),
+            Some(c) => {
+                close(c, &mut out);
+                Some((k, y, y, y, 1))
+            }
+            None => Some((k, y, y, y, 1)),
+        };
+    }
+    if let Some(c) = current {
+        close(c, &mut out);
+    }
+    out
+}
+
+/// Draws a series as a line; a long one (more than two points to a pixel column, where a line
+/// would blot into a block and dots break up) as each pixel column's least-to-greatest band in a
+/// light shade of its colour with a line through the columns' means.
+fn line_or_band<'a, 'b, DB: DrawingBackend + 'a>(
+    chart: &'b mut Chart<'a, DB>,
+    points: &[(f64, f64)],
+    colour: RGBColor,
+) -> Result<&'b mut plotters::chart::SeriesAnno<'a, DB>, String> {
+    let columns = chart.plotting_area().dim_in_pixel().0 as usize;
+    if points.len() <= 2 * columns.max(1) {
+        return chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(|e| e.to_string());
+    }
+    let range = chart.x_range();
+    let bands = column_bands(points, (range.start, range.end), columns);
+    let outline: Vec<(f64, f64)> = bands
+        .iter()
+        .map(|b| (b[0], b[2]))
+        .chain(bands.iter().rev().map(|b| (b[0], b[1])))
+        .collect();
+    let light = colour.mix(0.35);
+    chart
+        .draw_series(std::iter::once(Polygon::new(outline, light.filled())))
+        .map_err(|e| e.to_string())?;
+    chart
+        .draw_series(LineSeries::new(
+            bands.iter().map(|b| (b[0], b[3])),
+            colour.stroke_width(1),
+        ))
+        .map_err(|e| e.to_string())
+}
+
+/// The points of a series within `span` of its largest absolute value's x (a window a reader can
+/// read in a long record), and the window.
+pub fn window_around_peak(points: &[(f64, f64)], span: f64) -> (Vec<(f64, f64)>, (f64, f64)) {
+    let peak = points
+        .iter()
+        .filter(|p| p.1.is_finite())
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map_or(0.0, |p| p.0);
+    let (first, last) = (
+        points.first().map_or(0.0, |p| p.0),
+        points.last().map_or(0.0, |p| p.0),
+    );
+    let lo = (peak - 0.5 * span).max(first).min((last - span).max(first));
+    let hi = (lo + span).min(last);
+    let kept = points
+        .iter()
+        .copied()
+        .filter(|p| p.0 >= lo && p.0 <= hi)
+        .collect();
+    (kept, (lo, hi))
 }
 
 /// A labelled line for [`legend_panel`].
@@ -326,15 +505,13 @@ fn lines_panel<DB: DrawingBackend>(
     let mut chart = framed_chart(area, caption, (xlabel, ylabel), (x0, x1), (y0, y1))?;
     for s in series {
         let c = s.colour;
-        let drawn = chart
-            .draw_series(LineSeries::new(
-                s.points
-                    .iter()
-                    .copied()
-                    .filter(|(x, _)| x_range.is_none_or(|(a, b)| *x >= a && *x <= b)),
-                c.stroke_width(2),
-            ))
-            .map_err(|e| e.to_string())?;
+        let shown: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, _)| x_range.is_none_or(|(a, b)| *x >= a && *x <= b))
+            .collect();
+        let drawn = line_or_band(&mut chart, &shown, c)?;
         // An unlabelled line (a repeat of one listed) is drawn, not listed.
         if !s.label.is_empty() {
             drawn.label(s.label).legend(move |(x, y)| {
@@ -465,14 +642,12 @@ fn marked_panel<DB: DrawingBackend>(
     let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
     for (v, c) in series {
         match marks {
-            Marks::Lines => chart
-                .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
-                .map(|_| ()),
+            Marks::Lines => line_or_band(&mut chart, v, *c).map(|_| ()),
             Marks::Points => chart
                 .draw_series(v.iter().map(|p| Circle::new(*p, 2, c.filled())))
-                .map(|_| ()),
-        }
-        .map_err(|e| e.to_string())?;
+                .map(|_| ())
+                .map_err(|e| e.to_string()),
+        }?;
     }
     Ok(())
 }

@@ -117,38 +117,7 @@ pub fn soil_test(
                         )
                 });
         }
-        // Many cycles merge into a block: then only the first three, every tenth and the last are
-        // drawn in the modes' colours, the others thin and light grey.
-        let n_cycles = case.cycle_of_leg.iter().copied().max().unwrap_or(0);
-        let shown = |c: usize| n_cycles <= 10 || c <= 3 || c % 10 == 0 || c == n_cycles;
-        let cycle_of_row = |i: usize| {
-            let leg = r.rows[i].leg;
-            if leg == 0 {
-                0
-            } else {
-                case.cycle_of_leg[leg - 1]
-            }
-        };
-        // Segments of one mode within one cycle; the grey ones first, so that colour stays on top.
-        let mut segments = Vec::new();
-        let mut start = 0;
-        while start + 1 < r.rows.len() {
-            let mode = r.rows[start + 1].mode;
-            let cycle = cycle_of_row(start + 1);
-            let mut end = start + 1;
-            while end + 1 < r.rows.len()
-                && r.rows[end + 1].mode == mode
-                && cycle_of_row(end + 1) == cycle
-            {
-                end += 1;
-            }
-            let pts: Vec<(f64, f64)> = r.rows[start..=end]
-                .iter()
-                .map(|row| (row.p / d / 1e3, -row.z / d))
-                .collect();
-            segments.push((pts, mode, cycle > 0 && !shown(cycle)));
-            start = end;
-        }
+        let segments = mode_segments(case, r, d);
         let grey = RGBColor(205, 205, 205);
         let mut grey_labelled = false;
         for (pts, _, _) in segments.iter().filter(|s| s.2) {
@@ -188,41 +157,95 @@ pub fn soil_test(
             .map_err(&err)?;
 
         if let Some(right) = right {
-            let pts: Vec<(f64, f64)> = cycles
-                .iter()
-                .map(|&(c, z)| (c as f64, (z - z_start) / d))
-                .collect();
-            let n = cycles.len() as f64;
-            let y_hi = pts.iter().map(|p| p.1).fold(0.0f64, f64::max);
-            let y_lo = pts.iter().map(|p| p.1).fold(0.0f64, f64::min);
-            let (ya, yb) = padded(y_lo, y_hi);
-            let mut c2 = ChartBuilder::on(&right)
-                .caption("penetration at the end of each cycle", ("sans-serif", 22))
-                .margin(15)
-                .x_label_area_size(50)
-                .y_label_area_size(80)
-                .build_cartesian_2d(0.0..n + 1.0, ya..yb)
-                .map_err(&err)?;
-            c2.configure_mesh()
-                .opaque_grid()
-                .x_desc("cycle")
-                .y_desc("cumulative penetration since the first cycle, Δz/D")
-                .label_style(("sans-serif", 16))
-                .draw()
-                .map_err(&err)?;
-            c2.draw_series(LineSeries::new(
-                pts.iter().copied(),
-                mode_colour(Mode::Repenetration).stroke_width(2),
-            ))
-            .map_err(&err)?;
-            c2.draw_series(
-                pts.iter()
-                    .map(|&p| Circle::new(p, 3, mode_colour(Mode::Repenetration).filled())),
-            )
-            .map_err(&err)?;
+            cycles_panel(&right, cycles, z_start, d).map_err(plot_err(path))?;
         }
     }
     write_image(path, &rgb, size)
+}
+
+/// The cumulative penetration at the end of each cycle (the soil test's right panel).
+fn cycles_panel<DB: DrawingBackend>(
+    right: &DrawingArea<DB, plotters::coord::Shift>,
+    cycles: &[(usize, f64)],
+    z_start: f64,
+    d: f64,
+) -> Result<(), String> {
+    let pts: Vec<(f64, f64)> = cycles
+        .iter()
+        .map(|&(c, z)| (c as f64, (z - z_start) / d))
+        .collect();
+    let n = cycles.len() as f64;
+    let y_hi = pts.iter().map(|p| p.1).fold(0.0f64, f64::max);
+    let y_lo = pts.iter().map(|p| p.1).fold(0.0f64, f64::min);
+    let (ya, yb) = padded(y_lo, y_hi);
+    let mut c2 = ChartBuilder::on(&right)
+        .caption("penetration at the end of each cycle", ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0.0..n + 1.0, ya..yb)
+        .map_err(|e| e.to_string())?;
+    c2.configure_mesh()
+        .opaque_grid()
+        .x_desc("cycle")
+        .y_desc("cumulative penetration since the first cycle, Δz/D")
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    c2.draw_series(LineSeries::new(
+        pts.iter().copied(),
+        mode_colour(Mode::Repenetration).stroke_width(2),
+    ))
+    .map_err(|e| e.to_string())?;
+    c2.draw_series(
+        pts.iter()
+            .map(|&p| Circle::new(p, 3, mode_colour(Mode::Repenetration).filled())),
+    )
+    .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+/// The test's path cut into segments of one mode within one cycle, as `(P/D in kPa, −z/D)`
+/// points, each with its mode and whether it is drawn grey. Many cycles merge into a block: then
+/// only the first three, every tenth and the last are drawn in the modes' colours.
+fn mode_segments(
+    case: &SoilTestCase,
+    r: &TestResult,
+    d: f64,
+) -> Vec<(Vec<(f64, f64)>, Mode, bool)> {
+    // Many cycles merge into a block: then only the first three, every tenth and the last are
+    // drawn in the modes' colours, the others thin and light grey.
+    let n_cycles = case.cycle_of_leg.iter().copied().max().unwrap_or(0);
+    let shown = |c: usize| n_cycles <= 10 || c <= 3 || c % 10 == 0 || c == n_cycles;
+    let cycle_of_row = |i: usize| {
+        let leg = r.rows[i].leg;
+        if leg == 0 {
+            0
+        } else {
+            case.cycle_of_leg[leg - 1]
+        }
+    };
+    // Segments of one mode within one cycle; the grey ones first, so that colour stays on top.
+    let mut segments = Vec::new();
+    let mut start = 0;
+    while start + 1 < r.rows.len() {
+        let mode = r.rows[start + 1].mode;
+        let cycle = cycle_of_row(start + 1);
+        let mut end = start + 1;
+        while end + 1 < r.rows.len()
+            && r.rows[end + 1].mode == mode
+            && cycle_of_row(end + 1) == cycle
+        {
+            end += 1;
+        }
+        let pts: Vec<(f64, f64)> = r.rows[start..=end]
+            .iter()
+            .map(|row| (row.p / d / 1e3, -row.z / d))
+            .collect();
+        segments.push((pts, mode, cycle > 0 && !shown(cycle)));
+        start = end;
+    }
+    segments
 }
 
 /// The calibration's figure (`catena calibrate`): the test's force against penetration with the
