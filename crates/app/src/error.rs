@@ -103,6 +103,28 @@ pub enum AppError {
     },
 }
 
+impl SceneError {
+    /// The error with its file set to `file` when it is about a key of `table` (`table` itself,
+    /// `table.key`, `table[i]…`): a table a study or a sequence writes into its base scene is
+    /// checked in the scene, but its keys are in the study's file, which the message must name.
+    pub fn in_table_of(self, table: &str, file: &str) -> Self {
+        match self {
+            SceneError::Invalid { key, expected, .. }
+                if key == table
+                    || key.starts_with(&format!("{table}."))
+                    || key.starts_with(&format!("{table}[")) =>
+            {
+                SceneError::Invalid {
+                    file: file.to_string(),
+                    key,
+                    expected,
+                }
+            }
+            other => other,
+        }
+    }
+}
+
 impl AppError {
     /// Wraps an I/O error with its path.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {

@@ -121,8 +121,9 @@ fn short_study_bookkeeping_and_resume() {
     assert!(third.contains("2 from an earlier run"), "{third}");
 }
 
-/// Bad study input: a missing scene, a storm with a negative Hs, a duplicate id, an unknown key;
-/// each names the file and the key.
+/// Bad study input: a missing scene, a storm with a negative Hs, a duplicate id, an unknown key,
+/// a bad S-N curve, SCF or fibre in the study's own `[fatigue]`; each names the file the key is
+/// in and the key.
 #[test]
 fn bad_study_input_is_named() {
     let d = dir("bad");
@@ -133,25 +134,44 @@ fn bad_study_input_is_named() {
             "scene",
             text.replace("scr1000-linear-k100.toml", "nope.toml"),
             STORMS.to_string(),
-            "study.scene",
+            "study.scene".to_string(),
         ),
         (
             "hs",
             text.clone(),
             STORMS.replace("hs = 5.0\ntp = 8.4", "hs = -1.0\ntp = 8.4"),
-            "storm[0].hs",
+            "storm[0].hs".to_string(),
         ),
         (
             "id",
             text.clone(),
             STORMS.replace("id = 24", "id = 23"),
-            "storm[2].id",
+            "storm[2].id".to_string(),
         ),
         (
             "key",
             text.replace("transient = 20.0", "transient = 20.0\ncolour = 1"),
             STORMS.to_string(),
-            "colour",
+            "colour".to_string(),
+        ),
+        // The study's own [fatigue] table: its errors name the study's file, not the scene's.
+        (
+            "sn_curve",
+            text.replace("\"dnv-e-seawater-cp\"", "\"dnv-z\""),
+            STORMS.to_string(),
+            format!("{}: key `fatigue.sn_curve`", study.display()),
+        ),
+        (
+            "scf",
+            text.replace("scf = 1.2", "scf = -1.0"),
+            STORMS.to_string(),
+            format!("{}: key `fatigue.scf`", study.display()),
+        ),
+        (
+            "fibres",
+            text.replace("[\"outer\", \"inner\"]", "[\"middle\"]"),
+            STORMS.to_string(),
+            format!("{}: key `fatigue.fibres", study.display()),
         ),
     ] {
         std::fs::write(&study, &study_text).expect("study");
@@ -160,6 +180,6 @@ fn bad_study_input_is_named() {
             .expect_err(name)
             .to_string();
         println!("{name}: {err}");
-        assert!(err.contains(needle), "{name}: {err}");
+        assert!(err.contains(&needle), "{name}: {err}");
     }
 }

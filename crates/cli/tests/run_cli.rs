@@ -687,6 +687,17 @@ fn design_check_is_recorded_and_restarts_bit_for_bit() {
     )
     .expect("extremes of the file");
     assert!(text.contains("utilisation"), "{text}");
+    // In the units of the other outputs, not raw SI: tensions in kN, moments in kN·m.
+    let top = text
+        .lines()
+        .find(|l| l.contains("extremes of top_tension"))
+        .expect("top_tension");
+    assert!(top.contains(" kN;") && !top.contains("e6"), "{top}");
+    let sag = text
+        .lines()
+        .find(|l| l.contains("extremes of sag_moment"))
+        .expect("sag_moment");
+    assert!(sag.contains(" kN·m;"), "{sag}");
     assert_eq!(ext(&post), in_run);
     assert!(post.join("extremes.png").exists() && full.join("extremes.png").exists());
     // At the critical node (the largest utilisation over the run): its utilisation and moment

@@ -376,9 +376,35 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
     t
 }
 
-/// One line of the text summary for a channel's extremes.
+/// The units a channel of extremes is shown in, as the other outputs show its quantity:
+/// `(factor from SI, unit)` — tensions in kN, moments (`sag_moment`, a gauge's moment) in kN·m,
+/// the utilisation as a number; a CSV column of another name as it is given (`(1, "")`).
+pub fn channel_units(channel: &str) -> (f64, &'static str) {
+    let name = channel.to_ascii_lowercase();
+    if name == "utilisation" {
+        (1.0, "")
+    } else if name.contains("tension") {
+        (1e-3, "kN")
+    } else if name.contains("moment") || name.starts_with("gauge:") {
+        (1e-3, "kN·m")
+    } else {
+        (1.0, "")
+    }
+}
+
+/// A value of a channel in its units ([`channel_units`]): `1439.04 kN`, `0.8312`, or six
+/// significant digits for a channel of unknown units.
+pub fn channel_value(channel: &str, v: f64) -> String {
+    match channel_units(channel) {
+        (f, "") if channel.eq_ignore_ascii_case("utilisation") => format!("{:.4}", v * f),
+        (_, "") => format!("{v:.6e}"),
+        (f, unit) => format!("{:.2} {unit}", v * f),
+    }
+}
+
+/// One line of the text summary for a channel's extremes, in the channel's units.
 pub fn extremes_line(e: &catena::extremes::Extremes) -> String {
-    let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.6e}"));
+    let f = |v: Option<f64>| v.map_or("—".to_string(), |v| channel_value(&e.channel, v));
     let side = match e.tail {
         catena::extremes::Tail::Max => "largest",
         catena::extremes::Tail::Min => "least",
@@ -464,4 +490,20 @@ pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue_observer::Fatigue) -> Va
         "counted_seconds": secs,
         "fibres": fibres,
     })
+}
+
+#[cfg(test)]
+mod units_tests {
+    /// Extremes in the units of the other outputs: tensions in kN, moments in kN·m, the
+    /// utilisation as a number.
+    #[test]
+    fn extremes_are_given_in_kilonewtons() {
+        use super::channel_value as v;
+        assert_eq!(v("top_tension", 1.439044e6), "1439.04 kN");
+        assert_eq!(v("least_tension", 2.5e5), "250.00 kN");
+        assert_eq!(v("sag_moment", -123_456.0), "-123.46 kN·m");
+        assert_eq!(v("gauge:tdz:max", 5_000.0), "5.00 kN·m");
+        assert_eq!(v("utilisation", 0.83124), "0.8312");
+        assert_eq!(v("heave", 1.5), "1.500000e0");
+    }
 }

@@ -315,7 +315,10 @@ impl Sequence {
                 toml::Value::Table(raw.fatigue.clone()),
             ));
             edits.push(Edit::set("fatigue.start", s.transient));
-            let scene = base.edited(&edits, &files)?;
+            // The [fatigue] table is the study's own: its errors name the study's file.
+            let scene = base
+                .edited(&edits, &files)
+                .map_err(|e| e.in_table_of("fatigue", &file))?;
             visits.push((v, scene));
         }
         let mut calm_edits = vec![

@@ -194,15 +194,17 @@ fn storm_lines(t: &mut String, summary: &[StormSummary], arc: &[f64], quantile: 
             ))
         );
         for c in &s.across_seeds[1..] {
+            let value = |v: f64| catena_io::report::channel_value(&c.channel, v);
             let _ = writeln!(
                 t,
-                "    {}: per seed mean {:.6e} (sd {:.3e}){}",
+                "    {}: per seed mean {} (sd {}){}",
                 c.channel,
-                c.mean,
-                c.std_dev,
+                value(c.mean),
+                value(c.std_dev),
                 c.gumbel.map_or(String::new(), |(_, v)| format!(
-                    "; Gumbel across seeds: most probable {:.6e}, quantile {:.6e}",
-                    v[0], v[1]
+                    "; Gumbel across seeds: most probable {}, quantile {}",
+                    value(v[0]),
+                    value(v[1])
                 ))
             );
         }

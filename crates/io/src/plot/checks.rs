@@ -184,15 +184,43 @@ pub fn extremes(
                 catena::extremes::Tail::Max => "",
                 catena::extremes::Tail::Min => " (least, negated)",
             };
+            // In the channel's units (kN, kN·m), as the other outputs give them.
+            let (scale, unit) = crate::report::channel_units(&e.channel);
             let mpm = |v: Option<f64>| {
                 v.map_or("—".to_string(), |v| {
-                    if v.abs() >= 1e3 {
-                        format!("{v:.4e}")
-                    } else {
-                        format!("{v:.4}")
-                    }
+                    crate::report::channel_value(&e.channel, v)
                 })
             };
+            let unit_of = |what: &str| {
+                if unit.is_empty() {
+                    what.to_string()
+                } else {
+                    format!("{what} ({unit})")
+                }
+            };
+            let weibull_x = if unit.is_empty() {
+                "ln(peak − mean)".to_string()
+            } else {
+                format!("ln((peak − mean) / {unit})")
+            };
+            let gumbel_x = unit_of("block maximum (negated for a least)");
+            // Peaks' excesses and block maxima scaled to the units: ln x + ln(scale), x·scale.
+            let weibull: (Vec<(f64, f64)>, Vec<(f64, f64)>) = (
+                p.weibull
+                    .0
+                    .iter()
+                    .map(|&(a, b)| (a + scale.ln(), b))
+                    .collect(),
+                p.weibull
+                    .1
+                    .iter()
+                    .map(|&(a, b)| (a + scale.ln(), b))
+                    .collect(),
+            );
+            let gumbel: (Vec<(f64, f64)>, Vec<(f64, f64)>) = (
+                p.gumbel.0.iter().map(|&(a, b)| (a * scale, b)).collect(),
+                p.gumbel.1.iter().map(|&(a, b)| (a * scale, b)).collect(),
+            );
             let w_caption = format!(
                 "{}{side}: peaks, Weibull paper; MPM {} h: Rayleigh {}, Weibull {}",
                 e.channel,
@@ -210,15 +238,15 @@ pub fn extremes(
             for (area, (points, line), caption, axes) in [
                 (
                     &areas[2 * k],
-                    &p.weibull,
+                    &weibull,
                     w_caption,
-                    ("ln(peak − mean)", "ln(−ln(1 − F))"),
+                    (weibull_x.as_str(), "ln(−ln(1 − F))"),
                 ),
                 (
                     &areas[2 * k + 1],
-                    &p.gumbel,
+                    &gumbel,
                     g_caption,
-                    ("block maximum (negated for a least)", "−ln(−ln F)"),
+                    (gumbel_x.as_str(), "−ln(−ln F)"),
                 ),
             ] {
                 let ((x0, x1), (y0, y1)) = data_box(points.iter().chain(line).copied(), None);
