@@ -311,3 +311,53 @@ def test_animate_writes_a_gif_from_a_run_and_from_results_h5(short_heave, tmp_pa
     assert b["frames"] == 20
     with pytest.raises(catena.CatenaError, match="colour"):
         catena.animate(r, tmp_path / "d.gif", colour="tension")
+
+
+STORM23 = ROOT / "cases" / "scr1000" / "storm23.toml"
+
+
+def test_every_group_of_results_h5_opens_in_xarray(tmp_path):
+    """Every group of a results.h5 opens in xarray on its own (h5netcdf), with named dimensions and
+    their coordinates: a run with waves, a vessel, fatigue, a design check, extremes and a gauge,
+    so that every group the command writes is there."""
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    scene = catena.Scene.from_file(STORM23).edited(
+        {
+            "dynamic.duration": 30.0,
+            "dynamic.envelope_start": 10.0,
+            "fatigue.start": 10.0,
+            "design_check": {"code": "dnv-st-f201", "smys": 448e6, "smts": 531e6},
+            "extremes": {"start": 10.0, "block": 2.0, "target_duration": 600.0},
+            "gauge": [{"name": "tdz", "arc": 1150.0}],
+        }
+    )
+    case = tmp_path / "storm.toml"
+    case.write_text(scene.text)
+    out = tmp_path / "out"
+    cli("run", case, "--quiet", "--out", out)
+    path = out / "results.h5"
+    expected = {
+        "static": {"arc"},
+        "line": {"arc"},
+        "dynamic": {"time", "arc"},
+        "dynamic/gauges/tdz": {"time"},
+        "ranges": {"arc"},
+        "ranges/bending_moment": {"arc"},
+        "waves": {"omega"},
+        "fatigue": {"arc"},
+        "design_check": {"time", "arc"},
+    }
+    for group, dims in expected.items():
+        ds = xr.open_dataset(path, engine="h5netcdf", group=group, phony_dims="sort")
+        assert set(ds.sizes) == dims, (group, dict(ds.sizes))
+        assert dims <= set(ds.coords), (group, list(ds.coords))
+        assert len(ds.data_vars) > 0, group
+        for name, var in ds.data_vars.items():
+            assert not any(d.startswith("phony") for d in var.dims), (group, name, var.dims)
+    with xr.open_dataset(path, engine="h5netcdf", group="dynamic") as d, xr.open_dataset(
+        path, engine="h5netcdf", group="ranges"
+    ) as r:
+        moment = d["bending_moment"].sel(time=slice(10.0, None))
+        assert float(r["bending_moment_max"].max()) == pytest.approx(float(moment.max()), rel=0.05)
+        assert r["bending_moment_min"].dims == ("arc",)

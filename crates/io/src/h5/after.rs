@@ -119,6 +119,7 @@ pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), App
             .map_err(&err)?;
         }
     }
+    link_scales(&file, "fatigue", "dynamic", &["arc"]).map_err(&err)?;
     file.flush().map_err(&err)?;
     Ok(())
 }
@@ -164,6 +165,16 @@ pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppE
     }
     // Attached in one pass: `/dynamic/arc`'s list of uses rewritten once, not once per quantity.
     dimension_scales(&file, &dims).map_err(&err)?;
+    // `/ranges` opens on its own too: its scale and each quantity's arrays as `<quantity>_min`,
+    // `_max`, `_mean` (hard links to the same datasets); each quantity's group holds the scale.
+    link_scales(&file, "ranges", "dynamic", &["arc"]).map_err(&err)?;
+    for (name, _) in e.ranges() {
+        link_scales(&file, &format!("ranges/{name}"), "dynamic", &["arc"]).map_err(&err)?;
+        for w in ["min", "max", "mean"] {
+            g.link_hard(&format!("{name}/{w}"), &format!("{name}_{w}"))
+                .map_err(&err)?;
+        }
+    }
     file.flush().map_err(&err)?;
     Ok(())
 }

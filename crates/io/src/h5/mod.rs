@@ -154,6 +154,7 @@ pub fn write_static_into(path: &Path, f: &hdf5::File, run: &StaticRun) -> Result
         dims.push((format!("line/{name}"), vec![Some("static/arc")]));
     }
     dimension_scales(f, &dims).map_err(&err)?;
+    link_scales(f, "line", "static", &["arc"]).map_err(&err)?;
     f.flush().map_err(&err)?;
     Ok(())
 }
@@ -175,6 +176,25 @@ fn nullterm_string(n: usize) -> hdf5::Result<hdf5::Datatype> {
         return Err("H5Tset_strpad failed".into());
     }
     Ok(dt)
+}
+
+/// Hard links in `group` to the dimension scales `scales` of the group `from` (the same datasets,
+/// not copies), unless the group has them already: a group whose datasets use another group's
+/// scales then opens on its own with its dimensions and coordinates (netCDF readers and xarray
+/// find a dimension in the group or its parents only).
+pub fn link_scales(
+    file: &hdf5::File,
+    group: &str,
+    from: &str,
+    scales: &[&str],
+) -> hdf5::Result<()> {
+    let g = file.group(group)?;
+    for s in scales {
+        if !g.link_exists(s) {
+            g.link_hard(&format!("/{from}/{s}"), s)?;
+        }
+    }
+    Ok(())
 }
 
 /// A reference from a dimension scale back to a dataset dimension it is attached to: an element

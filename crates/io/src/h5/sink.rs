@@ -115,9 +115,26 @@ impl Describe {
         }
         if self.has_sea {
             one_d.extend(SEA.iter().map(|(name, _)| format!("dynamic/{name}")));
+            // The components' arrays along their frequency.
+            for name in ["wavenumber", "amplitude", "phase"] {
+                dims.push((format!("waves/{name}"), vec![Some("waves/omega")]));
+            }
         }
         dims.extend(one_d.into_iter().map(|d| (d, vec![Some("dynamic/time")])));
         dimension_scales(&sink.file, &dims).map_err(&err)?;
+        // Each group that uses `/dynamic`'s scales holds them too (hard links: the same datasets),
+        // so that it opens on its own with its dimensions and coordinates (netCDF readers, xarray).
+        let mut groups: Vec<(String, &[&str])> = self
+            .gauges
+            .iter()
+            .map(|(name, _)| (format!("dynamic/gauges/{name}"), &["time"][..]))
+            .collect();
+        if self.has_design {
+            groups.push(("design_check".into(), &["time", "arc"][..]));
+        }
+        for (group, scales) in groups {
+            link_scales(&sink.file, &group, "dynamic", scales).map_err(&err)?;
+        }
         sink.file.flush().map_err(&err)
     }
 }
