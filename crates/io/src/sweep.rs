@@ -47,18 +47,12 @@ pub fn key_label(key: &str) -> String {
     format!("{key}{unit}")
 }
 
-/// Writes `sweep.png` (nothing to draw when the first parameter is not numeric or no point has a
-/// life).
-pub fn figure(
-    path: &Path,
+/// The sweep's points as series: one per combination of the parameters after the first, in the
+/// plan's order, labelled `key = value, …`.
+fn series_by_the_others<'p>(
     plan: &Plan,
-    points: &[PointSummary],
-    title: &str,
-) -> Result<(), AppError> {
-    init_fonts();
-    let err = plot_err(path);
-    let perr = plot_err::<String>(path);
-    // Series: one per combination of the other parameters, in the plan's order.
+    points: &'p [PointSummary],
+) -> Vec<(String, Vec<&'p PointSummary>)> {
     let mut series: Vec<(String, Vec<&PointSummary>)> = Vec::new();
     for p in points {
         let label = plan
@@ -74,6 +68,29 @@ pub fn figure(
             None => series.push((label, vec![p])),
         }
     }
+    series
+}
+
+/// The least and the greatest of some values.
+fn least_and_greatest(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        })
+}
+
+/// Writes `sweep.png` (nothing to draw when the first parameter is not numeric or no point has a
+/// life).
+pub fn figure(
+    path: &Path,
+    plan: &Plan,
+    points: &[PointSummary],
+    title: &str,
+) -> Result<(), AppError> {
+    init_fonts();
+    let err = plot_err(path);
+    let perr = plot_err::<String>(path);
+    let series = series_by_the_others(plan, points);
     let xs: Vec<f64> = points
         .iter()
         .filter(|p| p.failed.is_none())
@@ -82,11 +99,7 @@ pub fn figure(
     if xs.is_empty() {
         return Ok(());
     }
-    let (x0, x1) = xs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(*x), b.max(*x))
-        });
+    let (x0, x1) = least_and_greatest(&xs);
     let log_x = x0 > 0.0 && x1 / x0 >= 10.0;
     let colours = [
         RGBColor(20, 90, 200),
@@ -133,11 +146,7 @@ pub fn figure(
             if vals.is_empty() {
                 continue;
             }
-            let (lo, hi) = vals
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                    (a.min(*x), b.max(*x))
-                });
+            let (lo, hi) = least_and_greatest(&vals);
             let pad = if log_y {
                 0.0
             } else {

@@ -377,21 +377,7 @@ pub fn strength(
             )
             .map_err(&perr)?;
             let u = &s.across_seeds[0];
-            let mut m = u.per_seed.clone();
-            m.sort_by(f64::total_cmp);
-            let n = m.len() as f64;
-            let points: Vec<(f64, f64)> = m
-                .iter()
-                .enumerate()
-                .map(|(i, v)| (*v, -(-((i as f64 + 1.0) / (n + 1.0)).ln()).ln()))
-                .collect();
-            let line: Vec<(f64, f64)> = match (u.gumbel, m.first(), m.last()) {
-                (Some((g, _)), Some(a), Some(b)) => [*a, *b]
-                    .iter()
-                    .map(|v| (*v, (v - g.location) / g.scale))
-                    .collect(),
-                _ => Vec::new(),
-            };
+            let (points, line) = gumbel_paper(&u.per_seed, u.gumbel.map(|g| g.0));
             let caption = format!(
                 "each seed's largest, Gumbel paper: {}",
                 u.gumbel
@@ -422,4 +408,28 @@ pub fn strength(
         }
     }
     write_image(path, &rgb, size)
+}
+
+/// Values on Gumbel paper, `(v, −ln(−ln F))` at the plotting positions `F = i/(n + 1)` of the
+/// sorted values, and the fitted line between the least and the greatest (none without a fit).
+fn gumbel_paper(
+    values: &[f64],
+    fit: Option<catena::extremes::Gumbel>,
+) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let mut m = values.to_vec();
+    m.sort_by(f64::total_cmp);
+    let n = m.len() as f64;
+    let points: Vec<(f64, f64)> = m
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (*v, -(-((i as f64 + 1.0) / (n + 1.0)).ln()).ln()))
+        .collect();
+    let line: Vec<(f64, f64)> = match (fit, m.first(), m.last()) {
+        (Some(g), Some(a), Some(b)) => [*a, *b]
+            .iter()
+            .map(|v| (*v, (v - g.location) / g.scale))
+            .collect(),
+        _ => Vec::new(),
+    };
+    (points, line)
 }

@@ -53,40 +53,8 @@ pub fn sequence(path: &Path, p: &SequencePlot<'_>) -> Result<(), AppError> {
             .filter(|&i| p.arc[i] >= a0 && p.arc[i] <= a1)
             .collect();
         // The trench's growth.
-        let n = p.trenches.len().max(1);
-        let shade = |k: usize| {
-            let f = if n > 1 {
-                k as f64 / (n - 1) as f64
-            } else {
-                1.0
-            };
-            let c = |light: f64, dark: f64| (light + (dark - light) * f) as u8;
-            RGBColor(c(170.0, 10.0), c(200.0, 40.0), c(240.0, 120.0))
-        };
-        let labels: Vec<String> = (0..p.trenches.len())
-            .map(|k| {
-                if k == 0 {
-                    "after the first visit (light)".to_string()
-                } else if k + 1 == p.trenches.len() {
-                    format!("after visit {} (dark)", k + 1)
-                } else {
-                    String::new()
-                }
-            })
-            .collect();
-        let mut series: Vec<Labelled<'_>> = vec![Labelled {
-            points: inside
-                .iter()
-                .map(|&i| (p.arc[i], p.as_laid.get(i).copied().unwrap_or(0.0).max(0.0)))
-                .collect(),
-            colour: RGBColor(200, 120, 20),
-            label: "as laid (statics)",
-        }];
-        series.extend(p.trenches.iter().enumerate().map(|(k, t)| Labelled {
-            points: inside.iter().map(|&i| (p.arc[i], t[i].max(0.0))).collect(),
-            colour: shade(k),
-            label: &labels[k],
-        }));
+        let labels = trench_labels(p.trenches.len());
+        let series = trench_series(p, &inside, &labels);
         legend_panel(
             &areas[0],
             "trench: penetration at rest after each visit (positive down)",
@@ -188,4 +156,52 @@ pub fn sequence(path: &Path, p: &SequencePlot<'_>) -> Result<(), AppError> {
         .map_err(&perr)?;
     }
     write_image(path, &rgb, size)
+}
+
+/// The legend's words for each visit's trench: the first and the last are named.
+fn trench_labels(n: usize) -> Vec<String> {
+    (0..n)
+        .map(|k| {
+            if k == 0 {
+                "after the first visit (light)".to_string()
+            } else if k + 1 == n {
+                format!("after visit {} (dark)", k + 1)
+            } else {
+                String::new()
+            }
+        })
+        .collect()
+}
+
+/// The as-laid penetration and each visit's trench over the window's nodes, shaded from light
+/// (the first visit) to dark (the last).
+fn trench_series<'a>(
+    p: &SequencePlot<'_>,
+    inside: &[usize],
+    labels: &'a [String],
+) -> Vec<Labelled<'a>> {
+    let n = p.trenches.len().max(1);
+    let shade = |k: usize| {
+        let f = if n > 1 {
+            k as f64 / (n - 1) as f64
+        } else {
+            1.0
+        };
+        let c = |light: f64, dark: f64| (light + (dark - light) * f) as u8;
+        RGBColor(c(170.0, 10.0), c(200.0, 40.0), c(240.0, 120.0))
+    };
+    let mut series: Vec<Labelled<'a>> = vec![Labelled {
+        points: inside
+            .iter()
+            .map(|&i| (p.arc[i], p.as_laid.get(i).copied().unwrap_or(0.0).max(0.0)))
+            .collect(),
+        colour: RGBColor(200, 120, 20),
+        label: "as laid (statics)",
+    }];
+    series.extend(p.trenches.iter().enumerate().map(|(k, t)| Labelled {
+        points: inside.iter().map(|&i| (p.arc[i], t[i].max(0.0))).collect(),
+        colour: shade(k),
+        label: labels[k].as_str(),
+    }));
+    series
 }
