@@ -119,8 +119,8 @@ fn visits_carry_the_trench_and_the_soil_and_resume_to_the_bit() {
 }
 
 /// Bad sequence input: a storm not in the table, a negative calm, both an order and a random
-/// table, a zero settling step, fewer random visits than storms, a missing scene: each error names
-/// the file and the key.
+/// table, a zero settling step, fewer random visits than storms, a missing scene, a bad S-N curve,
+/// SCF or fibre in its own `[fatigue]`: each error names the sequence's file and the key.
 #[test]
 fn bad_sequence_input_is_named() {
     let d = dir("bad");
@@ -160,12 +160,41 @@ fn bad_sequence_input_is_named() {
             text.replace_range(first..=end, "");
         }
         std::fs::write(&seq, text).expect("write");
-        let e = catena_cli::sequence::run(&seq, &d.join("out"), 1, false)
+        check(&seq, key);
+    }
+    // The sequence's own [fatigue] table: its errors name the sequence's file, not the scene's.
+    for (from, to, key) in [
+        (
+            "sn_curve = \"dnv-e-seawater-cp\"",
+            "sn_curve = \"dnv-z\"",
+            "fatigue.sn_curve",
+        ),
+        ("scf = 1.2", "scf = 0.0", "fatigue.scf"),
+        (
+            "fibres = [\"outer\"]",
+            "fibres = [\"middle\"]",
+            "fatigue.fibres",
+        ),
+    ] {
+        let seq = short_sequence(&d, "calm = 0.0");
+        let text = std::fs::read_to_string(&seq)
+            .expect("read")
+            .replace(from, to);
+        std::fs::write(&seq, text).expect("write");
+        check(&seq, key);
+    }
+}
+
+/// The sequence's error names the sequence's file and the key.
+fn check(seq: &std::path::Path, key: &str) {
+    let d = seq.parent().expect("dir");
+    {
+        let e = catena_cli::sequence::run(seq, &d.join("out"), 1, false)
             .expect_err("bad input")
             .to_string();
         assert!(
-            e.contains(key) && e.contains("sequence.toml"),
-            "{extra}: {e}"
+            e.contains(&format!("sequence.toml: key `{key}")),
+            "{key}: {e}"
         );
     }
 }
