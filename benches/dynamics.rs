@@ -11,12 +11,12 @@ use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {
     let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benchmarks/scr-heave.toml");
-    let scene = catena::statics::read_scene(&case).expect("case");
+    let scene = catena::run::statics::read_scene(&case).expect("case");
     let mut g = c.benchmark_group("heave");
     g.sample_size(10);
     g.bench_function("heave_benchmark_full", |b| {
         b.iter(|| {
-            let st = catena::statics::solve(scene.clone()).expect("statics");
+            let st = catena::run::statics::solve(scene.clone()).expect("statics");
             catena::run::run(st, &mut [], catena::run::RunOptions::default()).expect("run")
         })
     });
@@ -25,7 +25,7 @@ fn bench(c: &mut Criterion) {
     // 2000 times, nothing observed), (b) `run::run` with its built-in outputs (range graphs,
     // gauges, touchdown, top history) and the command line's HDF5 recorder writing every record
     // to a file, as `catena run` does.
-    let st = catena::statics::solve(scene.clone()).expect("statics");
+    let st = catena::run::statics::solve(scene.clone()).expect("statics");
     g.bench_function("heave_bare_stepper", |b| {
         b.iter(|| {
             let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
@@ -97,7 +97,7 @@ fn waves(c: &mut Criterion) {
     let case =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/benchmarks/scr-regular-wave.toml");
     let files = DirResolver::beside(&case);
-    let base = catena::statics::read_scene(&case).expect("case");
+    let base = catena::run::statics::read_scene(&case).expect("case");
     let storm = [
         Edit::set("waves.kind", "jonswap"),
         Edit::set("waves.hs", 5.0),
@@ -112,7 +112,7 @@ fn waves(c: &mut Criterion) {
     let line400 = base.edited(&storm, &files).expect("storm scene");
     let line400_exact = line400.edited(&exact, &files).expect("exact");
     let storm23_case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
-    let storm23 = catena::statics::read_scene(&storm23_case).expect("storm 23");
+    let storm23 = catena::run::statics::read_scene(&storm23_case).expect("storm 23");
     let storm23_exact = storm23
         .edited(&exact, &DirResolver::beside(&storm23_case))
         .expect("exact");
@@ -202,7 +202,7 @@ fn storm_at_120_s(
     DynWorkspace,
     catena_fe::dynamics::DynState,
 ) {
-    let st = catena::statics::solve(scene).expect("statics");
+    let st = catena::run::statics::solve(scene).expect("statics");
     let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
     let mut ws = DynWorkspace::new(&dm.line).expect("ws");
     let mut state = dynamics::initial_state(&dm, &st.u, &mut ws);
@@ -267,9 +267,9 @@ fn sections(c: &mut Criterion) {
         ),
         ("scr_heave_full", "cases/benchmarks/scr-heave.toml"),
     ] {
-        let scene = catena::statics::read_scene(&root.join(case)).expect("case");
-        let st = catena::statics::solve(scene).expect("statics");
-        let run = |st: &catena::statics::StaticRun| {
+        let scene = catena::run::statics::read_scene(&root.join(case)).expect("case");
+        let st = catena::run::statics::solve(scene).expect("statics");
+        let run = |st: &catena::run::statics::StaticRun| {
             catena::run::run(st.clone(), &mut [], catena::run::RunOptions::default()).expect("run")
         };
         let r = run(&st);
@@ -309,7 +309,7 @@ fn design_check(c: &mut Criterion) {
         ("storm23_30s_design_check", &with_check),
     ] {
         let scene = RiserScene::parse("storm23", text, &files).expect("scene");
-        let st = catena::statics::solve(scene).expect("statics");
+        let st = catena::run::statics::solve(scene).expect("statics");
         g.bench_function(name, |b| {
             b.iter(|| {
                 catena::run::run(st.clone(), &mut [], catena::run::RunOptions::default())

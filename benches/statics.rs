@@ -17,7 +17,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 fn bench(c: &mut Criterion) {
     let case =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/static-linear-k100.toml");
-    let scene = catena::statics::read_scene(&case).expect("case");
+    let scene = catena::run::statics::read_scene(&case).expect("case");
     let model = scene.model.clone();
     c.bench_function("scr1000_static_solve", |b| {
         b.iter(|| {

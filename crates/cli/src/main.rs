@@ -334,7 +334,7 @@ fn dispatch(command: Command) -> Result<(), catena::AppError> {
         } => commands::convergence(
             &case,
             &out,
-            &catena::convergence::ConvergenceOptions {
+            &catena::studies::convergence::ConvergenceOptions {
                 mesh_factors,
                 dt_factors,
                 jobs,
@@ -411,7 +411,7 @@ fn dispatch(command: Command) -> Result<(), catena::AppError> {
             &commands::ExtremesOptions {
                 channels,
                 start,
-                settings: catena::extremes::Settings {
+                settings: catena::checks::extremes::Settings {
                     target,
                     quantile,
                     block,

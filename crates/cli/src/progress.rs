@@ -4,7 +4,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use catena::observe::{Control, Observer, RunContext, StepView, Stop};
+use catena::run::observe::{Control, Observer, RunContext, StepView, Stop};
 use catena::AppError;
 
 /// A progress bar on the terminal (steps, simulated time, estimated time left).

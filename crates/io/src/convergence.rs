@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::convergence::{error_of, Series, SeriesAnalysis, Study, VariantRun};
+use catena::studies::convergence::{error_of, Series, SeriesAnalysis, Study, VariantRun};
 use catena::AppError;
 use plotters::prelude::*;
 use serde_json::json;

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::study::{annual_damage, shares, StormResult, Study};
+use catena::studies::fatigue_study::{annual_damage, shares, StormResult, Study};
 use catena::AppError;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -96,7 +96,7 @@ pub fn summary_json(
         .and_then(|d| d.fatigue.as_ref())
         .and_then(|f| f.design_factor);
     json!({
-        "catena_version": catena::checkpoint::VERSION,
+        "catena_version": catena::run::checkpoint::VERSION,
         "study": study.file,
         "scene": study.base.file,
         "storms": results.len(),
@@ -118,7 +118,7 @@ pub fn summary_json(
 pub fn write_h5(path: &Path, results: &[StormResult], l: &Lives) -> Result<(), AppError> {
     let err = h5err(path);
     let f = hdf5::File::create(path).map_err(&err)?;
-    attr(&f, "catena_version", catena::checkpoint::VERSION).map_err(&err)?;
+    attr(&f, "catena_version", catena::run::checkpoint::VERSION).map_err(&err)?;
     vector(&f, "arc", &l.arc, "m").map_err(&err)?;
     for (name, d, life) in &l.fibres {
         vector(&f, &format!("annual_damage_{name}"), d, "1/year").map_err(&err)?;

@@ -3,9 +3,9 @@
 
 use std::fmt::Write as _;
 
-use catena::observe::Stop;
+use catena::run::observe::Stop;
+use catena::run::statics::StaticRun;
 use catena::run::{self, DynamicRun};
-use catena::statics::StaticRun;
 use serde_json::{json, Value};
 
 /// A number, or `null` if it is not finite (not measured).
@@ -92,7 +92,7 @@ pub fn static_text(run: &StaticRun) -> String {
 pub fn static_json(run: &StaticRun) -> serde_json::Value {
     let s = &run.summary;
     json!({
-        "catena_version": catena::checkpoint::VERSION,
+        "catena_version": catena::run::checkpoint::VERSION,
         "case": run.scene.file,
         "title": run.scene.title,
         "units": "SI (N, m, N·m, rad; angles in deg where the key says so)",
@@ -170,10 +170,10 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
     if let Some(f) = &r.fatigue {
         js["fatigue"] = fatigue_json(r, f);
     }
-    if let Some(d) = r.output::<catena::design_observer::DesignCheck>() {
+    if let Some(d) = r.output::<catena::run::observers::design::DesignCheck>() {
         js["design_check"] = design_check_json(d);
     }
-    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+    if let Some(x) = r.output::<catena::run::observers::extremes::ExtremesObserver>() {
         js["extremes"] = serde_json::to_value(&x.results).unwrap_or(Value::Null);
     }
     let e = &r.envelopes;
@@ -334,7 +334,7 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             }
         }
     }
-    if let Some(d) = r.output::<catena::design_observer::DesignCheck>() {
+    if let Some(d) = r.output::<catena::run::observers::design::DesignCheck>() {
         if let Some((i, u)) = d.worst() {
             let _ = writeln!(
                 t,
@@ -365,7 +365,7 @@ pub fn dynamic_text(r: &DynamicRun) -> String {
             );
         }
     }
-    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+    if let Some(x) = r.output::<catena::run::observers::extremes::ExtremesObserver>() {
         for e in &x.results {
             t.push_str(&extremes_line(e));
         }
@@ -403,11 +403,11 @@ pub fn channel_value(channel: &str, v: f64) -> String {
 }
 
 /// One line of the text summary for a channel's extremes, in the channel's units.
-pub fn extremes_line(e: &catena::extremes::Extremes) -> String {
+pub fn extremes_line(e: &catena::checks::extremes::Extremes) -> String {
     let f = |v: Option<f64>| v.map_or("—".to_string(), |v| channel_value(&e.channel, v));
     let side = match e.tail {
-        catena::extremes::Tail::Max => "largest",
-        catena::extremes::Tail::Min => "least",
+        catena::checks::extremes::Tail::Max => "largest",
+        catena::checks::extremes::Tail::Min => "least",
     };
     format!(
         "  extremes of {} ({side}; {:.0} s of record, {} samples): sample {}; most probable in {:.0} s: Rayleigh {}, Weibull {}, Gumbel {}; {:.0} % quantile: Rayleigh {}, Weibull {}, Gumbel {}\n",
@@ -429,7 +429,7 @@ pub fn extremes_line(e: &catena::extremes::Extremes) -> String {
 /// The design check section of `summary.json`: the code, the largest utilisation, where, when and
 /// its dominant term, pass or fail, each node's largest utilisation and least effective tension,
 /// and the nodes in compression beyond their element's Euler load.
-pub fn design_check_json(d: &catena::design_observer::DesignCheck) -> Value {
+pub fn design_check_json(d: &catena::run::observers::design::DesignCheck) -> Value {
     let worst = d.worst();
     let least: Vec<f64> = d
         .least_tension
@@ -454,7 +454,7 @@ const YEAR: f64 = 365.25 * 86400.0;
 
 /// The fatigue section of `summary.json`: per fibre, the damage of the counted record at every node,
 /// the largest and where, and the life were the record repeated all year (`T/D` years).
-pub fn fatigue_json(r: &DynamicRun, f: &catena::fatigue_observer::Fatigue) -> Value {
+pub fn fatigue_json(r: &DynamicRun, f: &catena::run::observers::fatigue::Fatigue) -> Value {
     let arc = &r.model.line.arc;
     let secs = f.counted_seconds();
     let fibres: Vec<Value> = f

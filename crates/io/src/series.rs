@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::fatigue::rainflow::Cycle;
+use catena::checks::fatigue::rainflow::Cycle;
 use catena::AppError;
 
 fn bad(path: &Path, message: String) -> AppError {

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::soil_test::SoilTestCase;
+use catena::studies::soil_test::SoilTestCase;
 use catena::AppError;
 use catena_seabed::element_test::TestResult;
 

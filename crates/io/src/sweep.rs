@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use catena::sweep::{Plan, PointSummary};
+use catena::studies::sweep::{Plan, PointSummary};
 use catena::AppError;
 use plotters::prelude::*;
 

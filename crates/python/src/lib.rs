@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use catena::observe::{Control, Observer, RunContext, StepView};
+use catena::run::observe::{Control, Observer, RunContext, StepView};
 use catena::run::records::Records;
 use catena::run::RunOptions;
 use catena::scene::edit::Edit;
@@ -45,7 +45,7 @@ impl PyScene {
     /// Reads and checks a case file.
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Self> {
-        let scene = catena::statics::read_scene(&path).map_err(err)?;
+        let scene = catena::run::statics::read_scene(&path).map_err(err)?;
         Ok(Self {
             scene,
             files: DirResolver::beside(&path),
@@ -137,7 +137,7 @@ fn array<'py>(py: Python<'py>, v: &[f64], shape: Vec<usize>) -> (Bound<'py, PyBy
 /// The static solution: `{"arrays": {name: (bytes, shape)}, "summary": json}`.
 #[pyfunction]
 fn statics<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>> {
-    let st = catena::statics::solve(scene.scene.clone()).map_err(err)?;
+    let st = catena::run::statics::solve(scene.scene.clone()).map_err(err)?;
     let out = PyDict::new(py);
     let arrays = PyDict::new(py);
     let r = &st.results;
@@ -368,12 +368,14 @@ fn task(what: &str, k: usize, n: usize) -> PyResult<usize> {
 #[pyo3(signature = (path, jobs = 0))]
 fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
     use rayon::prelude::*;
-    let study = catena::study::Study::read(&path).map_err(err)?;
+    let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let results = on_threads(py, jobs, || {
         study
             .storms
             .par_iter()
-            .map(|(storm, scene)| catena::study::run_storm(storm, scene).map_err(|e| e.to_string()))
+            .map(|(storm, scene)| {
+                catena::studies::fatigue_study::run_storm(storm, scene).map_err(|e| e.to_string())
+            })
             .collect::<Result<Vec<_>, _>>()
     })?;
     study_dict(py, &study, &results)
@@ -382,7 +384,7 @@ fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<B
 /// A study's tasks, one per storm in the table's order: JSON `[{"index", "id", "scene_hash"}]`.
 #[pyfunction]
 fn study_tasks(path: PathBuf) -> PyResult<String> {
-    let study = catena::study::Study::read(&path).map_err(err)?;
+    let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let tasks: Vec<_> = study
         .storms
         .iter()
@@ -399,10 +401,10 @@ fn study_tasks(path: PathBuf) -> PyResult<String> {
 /// storm's result as JSON text (its damage per fibre along the arc, exact).
 #[pyfunction]
 fn study_storm(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
-    let study = catena::study::Study::read(&path).map_err(err)?;
+    let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
     let r = py
-        .detach(|| catena::study::run_storm(storm, scene))
+        .detach(|| catena::studies::fatigue_study::run_storm(storm, scene))
         .map_err(err)?;
     to_json(&r)
 }
@@ -415,7 +417,7 @@ fn study_merge<'py>(
     path: PathBuf,
     results: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let study = catena::study::Study::read(&path).map_err(err)?;
+    let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     if results.len() != study.storms.len() {
         return Err(err(format!(
             "{}: {} storm results for {} storms",
@@ -424,7 +426,7 @@ fn study_merge<'py>(
             study.storms.len()
         )));
     }
-    let results: Vec<catena::study::StormResult> = results
+    let results: Vec<catena::studies::fatigue_study::StormResult> = results
         .iter()
         .zip(&study.storms)
         .map(|(t, (storm, _))| from_json(&format!("storm {}", storm.id), t))
@@ -442,13 +444,13 @@ fn study_merge<'py>(
 
 fn study_dict<'py>(
     py: Python<'py>,
-    study: &catena::study::Study,
-    results: &[catena::study::StormResult],
+    study: &catena::studies::fatigue_study::Study,
+    results: &[catena::studies::fatigue_study::StormResult],
 ) -> PyResult<Bound<'py, PyDict>> {
     let arc = study
         .storms
         .first()
-        .map(|(_, s)| catena::statics::solve(s.clone()).map(|st| st.model.arc.clone()))
+        .map(|(_, s)| catena::run::statics::solve(s.clone()).map(|st| st.model.arc.clone()))
         .transpose()
         .map_err(err)?
         .unwrap_or_default();
@@ -457,7 +459,7 @@ fn study_dict<'py>(
     arrays.set_item("arc", array(py, &arc, vec![arc.len()]))?;
     let mut lives = serde_json::Map::new();
     for fib in study.fibres() {
-        let d = catena::study::annual_damage(results, fib.name());
+        let d = catena::studies::fatigue_study::annual_damage(results, fib.name());
         let life: Vec<f64> = d.iter().map(|x| 1.0 / x).collect();
         let (i, min) =
             life.iter().enumerate().fold(
@@ -500,7 +502,7 @@ fn study_dict<'py>(
 #[pyfunction]
 #[pyo3(signature = (path, jobs = 0))]
 fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
-    use catena::sequence::{run_as_laid, run_visit, Sequence};
+    use catena::studies::sequence::{run_as_laid, run_visit, Sequence};
     use rayon::prelude::*;
     let seq = Sequence::read(&path).map_err(err)?;
     let n = seq.visits.len();
@@ -540,7 +542,7 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
 /// visits are independent.
 #[pyfunction]
 fn sequence_tasks(path: PathBuf) -> PyResult<String> {
-    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let visits: Vec<_> = seq
         .visits
         .iter()
@@ -563,7 +565,7 @@ fn sequence_visit(
     index: usize,
     carry: Option<String>,
 ) -> PyResult<(String, Option<String>)> {
-    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
     let start: Option<catena_fe::dynamics::Carry> = carry
         .as_deref()
@@ -580,7 +582,7 @@ fn sequence_visit(
         )));
     }
     let (r, next) = py
-        .detach(|| catena::sequence::run_visit(&seq, k, start))
+        .detach(|| catena::studies::sequence::run_visit(&seq, k, start))
         .map_err(err)?;
     Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
 }
@@ -588,10 +590,10 @@ fn sequence_visit(
 /// One visit from the as-laid state: its result as JSON text.
 #[pyfunction]
 fn sequence_as_laid(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
-    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
     let r = py
-        .detach(|| catena::sequence::run_as_laid(&seq, k))
+        .detach(|| catena::studies::sequence::run_as_laid(&seq, k))
         .map_err(err)?;
     to_json(&r)
 }
@@ -605,8 +607,8 @@ fn sequence_merge<'py>(
     memory: Vec<String>,
     as_laid: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use catena::sequence::VisitResult;
-    let seq = catena::sequence::Sequence::read(&path).map_err(err)?;
+    use catena::studies::sequence::VisitResult;
+    let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let parse = |texts: &[String], what: &str| -> PyResult<Vec<VisitResult>> {
         texts
             .iter()
@@ -631,12 +633,12 @@ fn sequence_merge<'py>(
 
 fn sequence_dict<'py>(
     py: Python<'py>,
-    seq: &catena::sequence::Sequence,
-    memory: &[catena::sequence::VisitResult],
-    laid: &[catena::sequence::VisitResult],
+    seq: &catena::studies::sequence::Sequence,
+    memory: &[catena::studies::sequence::VisitResult],
+    laid: &[catena::studies::sequence::VisitResult],
 ) -> PyResult<Bound<'py, PyDict>> {
-    use catena::sequence::annual_damage;
-    let st = catena::statics::solve(seq.base.clone()).map_err(err)?;
+    use catena::studies::sequence::annual_damage;
+    let st = catena::run::statics::solve(seq.base.clone()).map_err(err)?;
     let arc = st.model.arc.clone();
     let fibre = memory
         .first()
@@ -690,12 +692,12 @@ fn sequence_dict<'py>(
 #[pyo3(signature = (path, jobs = 0))]
 fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
     use rayon::prelude::*;
-    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let results = on_threads(py, jobs, || {
         Ok(runs
             .par_iter()
-            .map(|r| Some(catena::sweep::run_one(r)))
+            .map(|r| Some(catena::studies::sweep::run_one(r)))
             .collect::<Vec<_>>())
     })?;
     sweep_table(&plan, &runs, &results)
@@ -705,13 +707,13 @@ fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
 /// `[{"index", "id", "point", "scene_hash"}]`.
 #[pyfunction]
 fn sweep_tasks(path: PathBuf) -> PyResult<String> {
-    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let tasks: Vec<_> = plan
         .runs()
         .iter()
         .map(|r| {
             serde_json::json!({"index": r.index, "id": r.id, "point": r.point,
-                               "scene_hash": catena::sweep::run_hash(r)})
+                               "scene_hash": catena::studies::sweep::run_hash(r)})
         })
         .collect();
     Ok(serde_json::Value::Array(tasks).to_string())
@@ -721,17 +723,17 @@ fn sweep_tasks(path: PathBuf) -> PyResult<String> {
 /// says why in its `error`, as on the command line).
 #[pyfunction]
 fn sweep_run(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
-    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let spec = &runs[task("run", index, runs.len())?];
-    to_json(&py.detach(|| catena::sweep::run_one(spec)))
+    to_json(&py.detach(|| catena::studies::sweep::run_one(spec)))
 }
 
 /// A sweep's table from its runs' results (JSON texts, or `None` for a run without one, which
 /// marks its point failed), the same as [`sweep`].
 #[pyfunction]
 fn sweep_merge(path: PathBuf, results: Vec<Option<String>>) -> PyResult<String> {
-    let plan = catena::sweep::Plan::read(&path).map_err(err)?;
+    let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     if results.len() != runs.len() {
         return Err(err(format!(
@@ -741,14 +743,15 @@ fn sweep_merge(path: PathBuf, results: Vec<Option<String>>) -> PyResult<String> 
             runs.len()
         )));
     }
-    let results: Vec<Option<catena::sweep::RunResult>> = results
+    let results: Vec<Option<catena::studies::sweep::RunResult>> = results
         .iter()
         .zip(&runs)
         .map(|(t, spec)| {
             t.as_deref()
                 .map(|t| {
-                    let r: catena::sweep::RunResult = from_json(&format!("run {}", spec.id), t)?;
-                    if r.id != spec.id || r.scene_hash != catena::sweep::run_hash(spec) {
+                    let r: catena::studies::sweep::RunResult =
+                        from_json(&format!("run {}", spec.id), t)?;
+                    if r.id != spec.id || r.scene_hash != catena::studies::sweep::run_hash(spec) {
                         return Err(err(format!(
                             "{}: the result given for run {} is of another run or an older scene",
                             plan.file, spec.id
@@ -763,11 +766,11 @@ fn sweep_merge(path: PathBuf, results: Vec<Option<String>>) -> PyResult<String> 
 }
 
 fn sweep_table(
-    plan: &catena::sweep::Plan,
-    runs: &[catena::sweep::RunSpec],
-    results: &[Option<catena::sweep::RunResult>],
+    plan: &catena::studies::sweep::Plan,
+    runs: &[catena::studies::sweep::RunSpec],
+    results: &[Option<catena::studies::sweep::RunResult>],
 ) -> PyResult<String> {
-    let points = catena::sweep::merge(plan, runs, results);
+    let points = catena::studies::sweep::merge(plan, runs, results);
     let names: Vec<String> = plan.parameters.iter().map(|p| p.key.clone()).collect();
     let rows: Vec<_> = points
         .iter()

@@ -1,13 +1,13 @@
 //! `catena calibrate TEST.csv --law randolph-quiggin --start START.toml --fit KEYS --out FIT.toml`:
-//! the Randolph–Quiggin parameters fitted to an element test ([`catena::calibrate`]). Writes the
+//! the Randolph–Quiggin parameters fitted to an element test ([`catena::studies::calibrate`]). Writes the
 //! fitted `[seabed]` table (FIT.toml, with the misfit and each parameter's determination in its
 //! header comments), FIT.json (the whole report) and FIT.png (test against fit) beside it.
 
 use std::path::Path;
 
-use catena::calibrate::{calibrate, read_test, seabed_toml};
 use catena::scene::invalid;
 use catena::scene::seabed::SeabedTable;
+use catena::studies::calibrate::{calibrate, read_test, seabed_toml};
 use catena::AppError;
 use catena_seabed::law::Law;
 

@@ -3,8 +3,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::soil_test::SoilTestCase;
-use catena::statics;
+use catena::run::statics;
+use catena::studies::soil_test::SoilTestCase;
 use catena::AppError;
 
 /// Measured cost of one element-step (`benches/README.md`, the scaling table: 0.38–0.39 µs for the
@@ -163,7 +163,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
     let mut t = String::new();
     let mut warnings = Vec::new();
     if doc.contains_key("sweep") {
-        let plan = catena::sweep::Plan::read(case)?;
+        let plan = catena::studies::sweep::Plan::read(case)?;
         let runs = plan.runs();
         let _ = writeln!(
             t,
@@ -172,7 +172,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             runs.len()
         );
         let per_run = match &plan.base {
-            catena::sweep::Base::Study(s) => {
+            catena::studies::sweep::Base::Study(s) => {
                 let mut sum = 0.0;
                 for (_, sc) in &s.storms {
                     let mut scratch = String::new();
@@ -180,7 +180,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
                 }
                 sum / s.storms.len().max(1) as f64
             }
-            catena::sweep::Base::Scene(sc) => describe_scene(sc, &mut t, &mut warnings),
+            catena::studies::sweep::Base::Scene(sc) => describe_scene(sc, &mut t, &mut warnings),
         };
         let _ = writeln!(
             t,
@@ -189,7 +189,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             per_run
         );
     } else if doc.contains_key("sequence") {
-        let seq = catena::sequence::Sequence::read(case)?;
+        let seq = catena::studies::sequence::Sequence::read(case)?;
         let ids: Vec<String> = seq
             .visits
             .iter()
@@ -229,7 +229,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             }
         );
     } else if doc.contains_key("study") && !doc.contains_key("fatigue") {
-        let study = catena::strength::StrengthStudy::read(case)?;
+        let study = catena::studies::strength::StrengthStudy::read(case)?;
         let _ = writeln!(
             t,
             "{file}: a strength study of {} runs (storms × seeds)",
@@ -251,7 +251,7 @@ pub fn check(case: &Path) -> Result<String, AppError> {
             sum
         );
     } else if doc.contains_key("study") {
-        let study = catena::study::Study::read(case)?;
+        let study = catena::studies::fatigue_study::Study::read(case)?;
         let _ = writeln!(
             t,
             "{file}: a fatigue study of {} storms, {} s counted each after {} s",

@@ -3,14 +3,14 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::convergence::ConvergenceOptions;
+use catena::studies::convergence::ConvergenceOptions;
 use catena::AppError;
 use catena_io::convergence as cv;
 
 /// The whole command: runs the study and writes `DIR/convergence.csv`, `DIR/convergence.json`,
 /// `DIR/convergence.png` and the variant scenes in `DIR/scenes/`.
 pub fn convergence(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result<String, AppError> {
-    let st = catena::convergence::study(case, opts)?;
+    let st = catena::studies::convergence::study(case, opts)?;
     std::fs::create_dir_all(out.join("scenes")).map_err(|e| AppError::io(out, e))?;
     let stem = case
         .file_stem()

@@ -15,16 +15,16 @@ pub struct ExtremesOptions {
     /// The record starts here, s (default: the file's first time).
     pub start: Option<f64>,
     /// The analysis' target duration, quantile and block (defaults: 3 h, 0.9, 600 s).
-    pub settings: catena::extremes::Settings,
+    pub settings: catena::checks::extremes::Settings,
 }
 
 /// `catena extremes RESULTS.h5|SERIES.csv --out DIR`: the short-term extremes of recorded channels
-/// (`catena::extremes`): from a results file, `top_tension`, `least_tension`, `sag_moment`,
+/// (`catena::checks::extremes`): from a results file, `top_tension`, `least_tension`, `sag_moment`,
 /// `utilisation` (with a design check) and `gauge:NAME[:max]`; from a CSV file (a header with
 /// `time` first, then one column per channel; a `:min` suffix on a column's name analyses its
 /// least), every column or the chosen ones. Writes DIR/extremes.json and DIR/extremes.png.
 pub fn extremes(input: &Path, out: &Path, opts: &ExtremesOptions) -> Result<String, AppError> {
-    use catena::extremes::{analyse, Tail};
+    use catena::checks::extremes::{analyse, Tail};
     let bad = |message: String| AppError::Run {
         file: input.display().to_string(),
         message,

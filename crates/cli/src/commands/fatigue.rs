@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use catena::statics;
+use catena::run::statics;
 use catena::AppError;
 
 use super::{resumable, write_json};
@@ -18,7 +18,7 @@ pub fn fatigue(
     jobs: usize,
     progress: bool,
 ) -> Result<String, AppError> {
-    use catena::study::{run_storm, StormResult, Study};
+    use catena::studies::fatigue_study::{run_storm, StormResult, Study};
     let t0 = std::time::Instant::now();
     let study = Study::read(study_path)?;
     let touchdown = statics::solve(study.base.clone())?.summary.touchdown_arc;
@@ -63,7 +63,7 @@ pub fn fatigue(
     let title = format!("{} — fatigue life, {} storms", study.base.title, n);
     catena_io::fatigue::life_png(&out.join("life.png"), &l, touchdown, &title)?;
     let (i, life, fibre) = catena_io::fatigue::minimum(&l).unwrap_or((0, f64::NAN, String::new()));
-    let shares = catena::study::shares(&rs, &fibre, i);
+    let shares = catena::studies::fatigue_study::shares(&rs, &fibre, i);
     catena_io::fatigue::storms_png(
         &out.join("storms.png"),
         &shares,

@@ -16,17 +16,15 @@ pub fn rainflow(
     scf: f64,
 ) -> Result<String, AppError> {
     let curve = match sn {
-        Some(name) => {
-            Some(
-                catena::fatigue::sn::SnCurve::dnv(name).ok_or_else(|| AppError::Run {
-                    file: series.display().to_string(),
-                    message: format!(
-                        "--sn {name}: not a curve catena knows; expected one of {}",
-                        catena::fatigue::sn::NAMES.join(", ")
-                    ),
-                })?,
-            )
-        }
+        Some(name) => Some(
+            catena::checks::fatigue::sn::SnCurve::dnv(name).ok_or_else(|| AppError::Run {
+                file: series.display().to_string(),
+                message: format!(
+                    "--sn {name}: not a curve catena knows; expected one of {}",
+                    catena::checks::fatigue::sn::NAMES.join(", ")
+                ),
+            })?,
+        ),
         None => None,
     };
     if !(scf.is_finite() && scf > 0.0) {
@@ -36,7 +34,7 @@ pub fn rainflow(
         });
     }
     let v = catena_io::series::read_series(series, column)?;
-    let cycles = catena::fatigue::rainflow::count(&v);
+    let cycles = catena::checks::fatigue::rainflow::count(&v);
     catena_io::series::write_cycles(out, &cycles)?;
     let total: f64 = cycles.iter().map(|c| c.count).sum();
     let largest = cycles.iter().map(|c| c.range).fold(0.0, f64::max);
@@ -49,7 +47,8 @@ pub fn rainflow(
         out.display()
     );
     if let (Some(c), Some(name)) = (curve, sn) {
-        let d = catena::fatigue::sn::miner(cycles.iter().map(|c| (c.range, c.count)), &c, scf);
+        let d =
+            catena::checks::fatigue::sn::miner(cycles.iter().map(|c| (c.range, c.count)), &c, scf);
         let _ = writeln!(
             t,
             "  Miner damage on {name} (SCF {scf}, ranges in MPa): {d:.6e}"

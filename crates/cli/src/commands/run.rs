@@ -7,10 +7,10 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::Instant;
 
-use catena::checkpoint::Checkpoint;
-use catena::observe::{Checkpointer, Observer, Stop};
+use catena::run::checkpoint::Checkpoint;
+use catena::run::observe::{Checkpointer, Observer, Stop};
+use catena::run::statics;
 use catena::run::{self, RunOptions};
-use catena::statics;
 use catena::AppError;
 use catena_io::h5::{self, Recorder};
 use catena_io::{plot, report};
@@ -227,10 +227,12 @@ fn joined<T>(r: std::thread::Result<Result<T, AppError>>, out: &Path) -> Result<
 /// The plots of `catena run` besides the static, dynamic and range plots: the design check, the
 /// extremes (with `extremes.json`), the gauges and the sea, each when the run has it.
 fn other_run_plots(out: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
-    if r.output::<catena::design_observer::DesignCheck>().is_some() {
+    if r.output::<catena::run::observers::design::DesignCheck>()
+        .is_some()
+    {
         plot::design_check(&out.join("design_check.png"), r)?;
     }
-    if let Some(x) = r.output::<catena::extremes_observer::ExtremesObserver>() {
+    if let Some(x) = r.output::<catena::run::observers::extremes::ExtremesObserver>() {
         write_json(
             &out.join("extremes.json"),
             &serde_json::to_value(&x.results).unwrap_or_default(),

@@ -1,4 +1,4 @@
-//! `catena sequence SEQUENCE.toml --out DIR`: storms in sequence ([`catena::sequence`]).
+//! `catena sequence SEQUENCE.toml --out DIR`: storms in sequence ([`catena::studies::sequence`]).
 //!
 //! The sequence is serial by nature: one thread runs it, visit after visit, each from the state the
 //! last left; the as-laid visits (the study as today) run alongside on the other threads. Each
@@ -12,8 +12,8 @@
 use std::path::Path;
 use std::time::Instant;
 
-use catena::sequence::{annual_damage, run_as_laid, run_visit, Sequence, VisitResult};
-use catena::statics;
+use catena::run::statics;
+use catena::studies::sequence::{annual_damage, run_as_laid, run_visit, Sequence, VisitResult};
 use catena::AppError;
 use catena_fe::dynamics::Carry;
 use serde_json::json;

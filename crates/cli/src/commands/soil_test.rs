@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use catena::soil_test::SoilTestCase;
+use catena::studies::soil_test::SoilTestCase;
 use catena::AppError;
 use catena_io::{plot, soil};
 

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use catena::statics;
+use catena::run::statics;
 use catena::AppError;
 use catena_io::h5::{self};
 use catena_io::{plot, report};

@@ -3,14 +3,14 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use catena::statics;
-use catena::strength::StormSummary;
+use catena::run::statics;
+use catena::studies::strength::StormSummary;
 use catena::AppError;
 
 use super::{resumable, write_json};
 
 /// `catena strength STUDY.toml --out DIR [--jobs N]`: the strength study
-/// ([`catena::strength`]): every storm and seed run (in parallel with `--jobs`), each written to
+/// ([`catena::studies::strength`]): every storm and seed run (in parallel with `--jobs`), each written to
 /// DIR/runs/<storm>-<seed>.json as it finishes (a rerun skips the runs whose scene is unchanged),
 /// then per storm the utilisation along the line over its seeds and the extremes across them:
 /// DIR/summary.json, DIR/utilisation.csv, DIR/strength.png.
@@ -20,7 +20,7 @@ pub fn strength(
     jobs: usize,
     progress: bool,
 ) -> Result<String, AppError> {
-    use catena::strength::{run_one, RunResult, StrengthStudy};
+    use catena::studies::strength::{run_one, RunResult, StrengthStudy};
     let t0 = std::time::Instant::now();
     let study = StrengthStudy::read(study_path)?;
     let st = statics::solve(study.base.clone())?;
@@ -62,13 +62,13 @@ pub fn strength(
         .and_then(|r| r.scene.dynamic.as_ref())
         .and_then(|d| d.extremes.as_ref())
         .map_or(0.9, |e| e.settings.quantile);
-    let summary = catena::strength::summarise(&rs, quantile);
+    let summary = catena::studies::strength::summarise(&rs, quantile);
     let arc = &st.model.arc;
     let static_u: Vec<f64> = study
         .runs
         .first()
         .and_then(|r| r.scene.dynamic.as_ref())
-        .and_then(|d| catena::design_observer::evaluator_for(d, &st.results))
+        .and_then(|d| catena::run::observers::design::evaluator_for(d, &st.results))
         .map(|ev| {
             let mut u = vec![0.0; arc.len()];
             ev.along(&st.results, &mut u);

@@ -63,7 +63,7 @@ fn shard_of(file: &str, o: &SweepOptions) -> Result<(usize, usize), AppError> {
 /// `catena sweep`: runs this shard's runs (skipping those already done with the same scene), then,
 /// when this is the only shard or with `--merge`, writes `sweep.csv` and `sweep.json`.
 pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
-    use catena::sweep::{self, Plan, RunResult};
+    use catena::studies::sweep::{self, Plan, RunResult};
     use rayon::prelude::*;
     let plan = Plan::read(plan_path)?;
     let runs = plan.runs();
@@ -212,9 +212,9 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
 fn run_and_keep(
     dir: &Path,
     hash: &str,
-    spec: &catena::sweep::RunSpec,
-) -> Result<catena::sweep::RunResult, AppError> {
-    let r = catena::sweep::run_one(spec);
+    spec: &catena::studies::sweep::RunSpec,
+) -> Result<catena::studies::sweep::RunResult, AppError> {
+    let r = catena::studies::sweep::run_one(spec);
     let path = dir.join(format!("{hash}.json"));
     let tmp = dir.join(format!("{hash}.{}.tmp", spec.id));
     let body = serde_json::to_string(&r).map_err(|e| AppError::Output {
@@ -227,8 +227,8 @@ fn run_and_keep(
 }
 
 /// The sweep figure's title: the base scene's and the swept keys.
-fn figure_title(plan: &catena::sweep::Plan) -> String {
-    use catena::sweep;
+fn figure_title(plan: &catena::studies::sweep::Plan) -> String {
+    use catena::studies::sweep;
     format!(
         "{} — base of a sweep of {}",
         match &plan.base {

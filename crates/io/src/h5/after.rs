@@ -7,7 +7,7 @@ use super::*;
 /// into the attribute `terms`), `least_effective_tension`, `time_of_least` and `euler_load`, with
 /// units and the code's name and conventions as attributes. Nothing without a check.
 pub fn write_design_check(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppError> {
-    let Some(d) = r.output::<catena::design_observer::DesignCheck>() else {
+    let Some(d) = r.output::<catena::run::observers::design::DesignCheck>() else {
         return Ok(());
     };
     let err = h5err(path);
@@ -49,7 +49,7 @@ pub fn write_design_check(path: &Path, r: &catena::run::DynamicRun) -> Result<()
         .with_data(&terms)
         .create("term_of_max")
         .map_err(&err)?;
-    let names: Vec<String> = catena::design::Term::ALL
+    let names: Vec<String> = catena::checks::design::Term::ALL
         .iter()
         .enumerate()
         .map(|(i, t)| format!("{i} {}", t.name()))
@@ -125,7 +125,7 @@ pub fn write_fatigue(path: &Path, r: &catena::run::DynamicRun) -> Result<(), App
 }
 
 /// Writes `/ranges/<quantity>/min`, `max` and `mean` (one value per node, node order as in
-/// `/dynamic/arc`; every quantity of [`catena::observe::RANGE_QUANTITIES`] the run has) into a
+/// `/dynamic/arc`; every quantity of [`catena::run::observe::RANGE_QUANTITIES`] the run has) into a
 /// results file after the run. The group's attributes `start` (s) and `steps` say what they were
 /// taken over (every step from the envelope start, not only the recorded ones); each quantity's
 /// group has `units` and `description`.
@@ -147,7 +147,7 @@ pub fn write_ranges(path: &Path, r: &catena::run::DynamicRun) -> Result<(), AppE
     .map_err(&err)?;
     let mut dims: Vec<(String, Vec<Option<&str>>)> = Vec::new();
     for (name, range) in e.ranges() {
-        let (units, what) = catena::observe::RANGE_QUANTITIES
+        let (units, what) = catena::run::observe::RANGE_QUANTITIES
             .iter()
             .find(|q| q.0 == name)
             .map_or(("", ""), |q| (q.1, q.2));

@@ -39,11 +39,11 @@ use std::str::FromStr;
 use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use catena::observe::{at_arc, Control, Observer, RunContext, StepView};
+use catena::run::observe::{at_arc, Control, Observer, RunContext, StepView};
 use catena::run::records::{
     record_fields, record_series, RECORD_FIELDS as FIELDS, RECORD_SERIES as SERIES,
 };
-use catena::statics::StaticRun;
+use catena::run::statics::StaticRun;
 use catena::AppError;
 use catena_fe::assembly::LineResults;
 use hdf5::types::VarLenUnicode;

@@ -4,7 +4,7 @@
 use super::*;
 
 /// A channel's name, design end and record.
-pub type Channel = (String, catena::extremes::Tail, Vec<f64>);
+pub type Channel = (String, catena::checks::extremes::Tail, Vec<f64>);
 
 /// The channels of `catena extremes` from a results file's records: `/dynamic/time` and, for each
 /// name, its record: `top_tension`, `least_tension` (the least of each record's effective
@@ -18,7 +18,7 @@ pub fn read_extreme_channels(
     path: &Path,
     names: &[String],
 ) -> Result<(Vec<f64>, Vec<Channel>), AppError> {
-    use catena::extremes::Tail;
+    use catena::checks::extremes::Tail;
     let err = h5err(path);
     let file = hdf5::File::open(path).map_err(&err)?;
     let read = |name: &str| -> Result<Vec<f64>, AppError> {

@@ -32,7 +32,7 @@ pub struct Recorder {
     pub(super) sea: Option<(f64, [f64; 2], [f64; 2])>,
     pub(super) has_sea: bool,
     /// With a design check: its evaluator (set when the run starts) and the step's utilisation.
-    pub(super) design: Option<(catena::design::Evaluator, Vec<f64>)>,
+    pub(super) design: Option<(catena::checks::design::Evaluator, Vec<f64>)>,
     pub(super) has_design: bool,
     pub(super) last_flush: Instant,
     /// Time the run's thread spent recording (buffering, handing over, waiting), s.
@@ -563,7 +563,7 @@ impl Observer for Recorder {
     ) -> Result<(), AppError> {
         self.gauge_arcs = ctx.spec.gauges.iter().map(|g| g.arc).collect();
         if self.has_design {
-            self.design = catena::design_observer::evaluator_of(ctx)
+            self.design = catena::run::observers::design::evaluator_of(ctx)
                 .map(|ev| (ev, vec![0.0; ctx.model.line.nodes()]));
         }
         if self.has_sea {
@@ -613,7 +613,7 @@ impl Observer for Recorder {
     fn finish(
         &mut self,
         _: &RunContext<'_>,
-        _: Option<&catena::observe::Stop>,
+        _: Option<&catena::run::observe::Stop>,
     ) -> Result<(), AppError> {
         let t0 = Instant::now();
         let r = self.sync();

@@ -15,7 +15,7 @@ use super::*;
 /// static state's (functional only) and the limit 1.0, over the whole line and around the touchdown
 /// zone; beneath, each node's least effective tension with the static tension (compression below 0).
 pub fn design_check(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
-    let Some(d) = r.output::<catena::design_observer::DesignCheck>() else {
+    let Some(d) = r.output::<catena::run::observers::design::DesignCheck>() else {
         return Ok(());
     };
     init_fonts();
@@ -165,7 +165,7 @@ pub fn design_check(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
 pub fn extremes(
     path: &Path,
     title: &str,
-    items: &[(&catena::extremes::Extremes, &[f64], f64)],
+    items: &[(&catena::checks::extremes::Extremes, &[f64], f64)],
 ) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
@@ -179,10 +179,10 @@ pub fn extremes(
         let areas = root.split_evenly((rows, 2));
         let (blue, red) = (RGBColor(20, 90, 200), RGBColor(180, 30, 30));
         for (k, (e, x, dt)) in items.iter().enumerate() {
-            let p = catena::extremes::paper(e, x, *dt);
+            let p = catena::checks::extremes::paper(e, x, *dt);
             let side = match e.tail {
-                catena::extremes::Tail::Max => "",
-                catena::extremes::Tail::Min => " (least, negated)",
+                catena::checks::extremes::Tail::Max => "",
+                catena::checks::extremes::Tail::Min => " (least, negated)",
             };
             // In the channel's units (kN, kN·m), as the other outputs give them.
             let (scale, unit) = crate::report::channel_units(&e.channel);
@@ -276,8 +276,8 @@ pub fn strength(
     title: &str,
     arc: &[f64],
     static_u: &[f64],
-    runs: &[catena::strength::RunResult],
-    storms: &[catena::strength::StormSummary],
+    runs: &[catena::studies::strength::RunResult],
+    storms: &[catena::studies::strength::StormSummary],
 ) -> Result<(), AppError> {
     init_fonts();
     let err = plot_err(path);
@@ -414,7 +414,7 @@ pub fn strength(
 /// sorted values, and the fitted line between the least and the greatest (none without a fit).
 fn gumbel_paper(
     values: &[f64],
-    fit: Option<catena::extremes::Gumbel>,
+    fit: Option<catena::checks::extremes::Gumbel>,
 ) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
     let mut m = values.to_vec();
     m.sort_by(f64::total_cmp);

@@ -190,7 +190,7 @@ pub(super) fn touchdown_marks(r: &DynamicRun) -> (Vec<Marker>, Option<(f64, f64)
     (markers, zoom)
 }
 
-/// Range graphs (`ranges.png`): for every quantity of [`catena::observe::RANGE_QUANTITIES`] the
+/// Range graphs (`ranges.png`): for every quantity of [`catena::run::observe::RANGE_QUANTITIES`] the
 /// run has, its least, greatest and mean value along the arc over the envelope window, on the whole
 /// line and zoomed on the touchdown zone.
 pub fn ranges(path: &Path, r: &DynamicRun) -> Result<(), AppError> {

@@ -121,9 +121,9 @@ where
 /// The size of [`dynamic`]'s plot.
 pub const DYNAMIC_SIZE: (u32, u32) = (1800, 1500);
 
-/// The largest size of [`ranges`]' plot: every quantity of [`catena::observe::RANGE_QUANTITIES`]
+/// The largest size of [`ranges`]' plot: every quantity of [`catena::run::observe::RANGE_QUANTITIES`]
 /// present.
-pub const RANGES_MAX_SIZE: (u32, u32) = ranges_size(catena::observe::RANGE_QUANTITIES.len());
+pub const RANGES_MAX_SIZE: (u32, u32) = ranges_size(catena::run::observe::RANGE_QUANTITIES.len());
 
 /// The size of [`ranges`]' plot of `quantities` range graphs (two to a row).
 const fn ranges_size(quantities: usize) -> (u32, u32) {

@@ -7,7 +7,7 @@ use catena_seabed::law::Law;
 use catena_seabed::rq::Mode;
 use plotters::prelude::*;
 
-use catena::soil_test::SoilTestCase;
+use catena::studies::soil_test::SoilTestCase;
 use catena::AppError;
 
 use super::*;
