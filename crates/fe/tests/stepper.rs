@@ -232,8 +232,9 @@ fn hht_alpha_decay_and_period_elongation_through_advance() {
 /// Added mass acts normal to the line only. A taut horizontal string (L 100 m, T 100 kN, μ 10 kg/m,
 /// D 0.1 m) in water with `Ca = 1`: its first transverse period is that of a string of mass
 /// `μ + Ca·ρ·πD²/4` (8.05 kg/m more, so 34 % longer), within 0.5 %; the vertical bar's axial period
-/// is unchanged by the water, within 0.05 %. Dropping, doubling or applying the added mass axially
-/// fails one of the two.
+/// is unchanged by the water, within 0.05 %. A line type's own `Ca` (here 1 in a sea of 0) is the
+/// one its nodes take. Dropping, doubling or applying the added mass axially, or taking the sea's
+/// coefficient over the type's, fails one of them.
 #[test]
 fn added_mass_is_normal_and_of_the_right_size() {
     let (l, t, ea, mu, d) = (100.0, 1e5, 1e10, 10.0, 0.1);
@@ -252,12 +253,27 @@ fn added_mass_is_normal_and_of_the_right_size() {
         .flat_map(|i| [m.arc[i] * stretch, 0.0, 0.0])
         .collect();
     let pl = Placement::new(&q);
-    for (label, h, mass) in [
-        ("in air", None, mu),
-        ("in water", Some(hydro(0.0, 0.0, ca)), mu + ma),
+    // The same string whose line type has its own Ca = 1 in a sea of Ca = 0: the type's is used.
+    let mut own = segment(l, 40, ea, 1.0, mu, 0.0, d);
+    own.coefficients = Some(catena_fe::environment::Coefficients {
+        cd_normal: 0.0,
+        cd_axial: 0.0,
+        ca_normal: ca,
+    });
+    let m_own = model(own, Support::Pinned, Support::Pinned, None)
+        .with_sea_coefficients(hydro(0.0, 0.0, 0.0).coefficients());
+    for (label, m, h, mass) in [
+        ("in air", &m, None, mu),
+        ("in water", &m, Some(hydro(0.0, 0.0, ca)), mu + ma),
+        (
+            "with its type's own Ca",
+            &m_own,
+            Some(hydro(0.0, 0.0, 0.0)),
+            mu + ma,
+        ),
     ] {
-        let dm = dynamic(&m, &pl, &settings(0.0, h));
-        let mut ws = DynWorkspace::new(&m).expect("ws");
+        let dm = dynamic(m, &pl, &settings(0.0, h));
+        let mut ws = DynWorkspace::new(m).expect("ws");
         let mut st = initial_state(&dm, &vec![0.0; q.len()], &mut ws);
         for i in 0..nn {
             st.v[3 * i + 1] = 1e-3 * (PI * m.arc[i] / l).sin();
