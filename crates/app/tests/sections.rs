@@ -352,3 +352,52 @@ fn a_lazy_wave_heaves_as_cabledyn_has_it() {
         range(i_hog)
     );
 }
+
+/// The seabed holds a section by its contact diameter, not its steel's: the touchdown-joint case
+/// on a linear seabed (`P = k·D·z`, k = 100 kN/m/m²) with the last 250 m of pipe given a contact
+/// diameter of 0.456 m (a coated pipe; the steel's is 0.228 m). Resting on the flat, far beyond the
+/// touchdown, its penetration is `W'/(k·D_contact)` = 1010 N/m / (100 kN/m/m² × 0.456 m) =
+/// 22.1 mm (on the steel's diameter it would be twice that), within 1 %; the joint before it, on
+/// its steel's diameter, rests at `W'_joint/(k·0.228 m)`.
+#[test]
+fn the_seabed_holds_a_section_by_its_contact_diameter() {
+    let text = std::fs::read_to_string(root().join("cases/scr1000/static-rq-touchdown-joint.toml"))
+        .expect("case");
+    let seabed = text.find("[seabed]").expect("seabed");
+    let text = format!(
+        "{}[seabed]\nmodel = \"linear\"\nstiffness = 100.0e3\n",
+        &text[..seabed]
+    )
+    .replacen(
+        "[[section]]\ntype = \"pipe\"\nto = 1600.0",
+        "[[section]]\ntype = \"coated\"\nto = 1600.0",
+        1,
+    ) + "\n[[line_type]]\nname = \"coated\"\nod = 0.228\nwall = 0.0254\nyoungs_modulus = 210.0e9\nsteel_density = 7850.0\ncontents_density = 726.0\ncontact_od = 0.456\n";
+    let scene = RiserScene::parse("coated.toml", &text, &NoFiles).expect("scene");
+    let st = statics::solve(scene).expect("statics");
+    let (r, m) = (&st.results, &st.model);
+    let n = m.nodes();
+    let w = m.elements[m.elements.len() - 1].weight;
+    let at = |s: f64| (0..n).min_by(|&a, &b| (m.arc[a] - s).abs().total_cmp(&(m.arc[b] - s).abs()));
+    let (coated, joint) = (at(1500.0).expect("node"), at(1300.0).expect("node"));
+    let w_joint = m.elements[(0..m.elements.len())
+        .find(|&e| m.arc[e] >= 1300.0)
+        .expect("joint element")]
+    .weight;
+    println!(
+        "resting on the flat: coated {:.5} m (W' {w:.1} N/m), joint {:.5} m (W' {w_joint:.1} N/m)",
+        r.penetration[coated], r.penetration[joint]
+    );
+    let expected = w / (100.0e3 * 0.456);
+    assert!(
+        (r.penetration[coated] / expected - 1.0).abs() < 0.01,
+        "{}",
+        r.penetration[coated]
+    );
+    let on_steel = w_joint / (100.0e3 * 0.228);
+    assert!(
+        (r.penetration[joint] / on_steel - 1.0).abs() < 0.01,
+        "{}",
+        r.penetration[joint]
+    );
+}
