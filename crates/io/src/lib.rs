@@ -22,4 +22,3 @@ pub mod plot;
 pub mod report;
 pub mod series;
 pub mod soil;
-pub mod sweep;

@@ -31,7 +31,7 @@ pub fn convergence(case: &Path, out: &Path, opts: &ConvergenceOptions) -> Result
     )
     .map_err(|e| AppError::io(&j, e))?;
     let png = out.join("convergence.png");
-    cv::plot(&png, &st)?;
+    catena_io::plot::convergence::plot(&png, &st)?;
     let mut t = cv::summary_text(&st);
     let _ = writeln!(
         t,

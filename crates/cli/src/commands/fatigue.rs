@@ -61,10 +61,10 @@ pub fn fatigue(
     let js = catena_io::fatigue::summary_json(&study, &rs, &l, touchdown, wall);
     write_json(&out.join("summary.json"), &js)?;
     let title = format!("{} — fatigue life, {} storms", study.base.title, n);
-    catena_io::fatigue::life_png(&out.join("life.png"), &l, touchdown, &title)?;
+    catena_io::plot::fatigue::life_png(&out.join("life.png"), &l, touchdown, &title)?;
     let (i, life, fibre) = catena_io::fatigue::minimum(&l).unwrap_or((0, f64::NAN, String::new()));
     let shares = catena::studies::fatigue_study::shares(&rs, &fibre, i);
-    catena_io::fatigue::storms_png(
+    catena_io::plot::fatigue::storms_png(
         &out.join("storms.png"),
         &shares,
         &format!(

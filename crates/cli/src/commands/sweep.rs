@@ -178,7 +178,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     write_json(&json_path, &js)?;
     let png = out.join("sweep.png");
     let title = figure_title(&plan);
-    catena_io::sweep::figure(&png, &plan, &points, &title)?;
+    catena_io::plot::sweep::figure(&png, &plan, &points, &title)?;
     let failed = points.iter().filter(|p| p.failed.is_some()).count();
     let _ = writeln!(
         text,

@@ -7,11 +7,14 @@
 //! the shared panels, written by `write_image`, re-exported below.
 
 mod checks;
+pub mod convergence;
 mod dynamic;
+pub mod fatigue;
 mod line;
 mod sea;
 mod sequence;
 mod soil;
+pub mod sweep;
 
 pub use checks::{design_check, extremes, strength};
 pub use dynamic::{dynamic, dynamic_on, gauges};

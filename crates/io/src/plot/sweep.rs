@@ -9,7 +9,7 @@ use catena::studies::sweep::{Plan, PointSummary};
 use catena::AppError;
 use plotters::prelude::*;
 
-use crate::plot::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
+use super::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
 
 /// The number a parameter value stands for, if it is one.
 fn number(v: &toml::Value) -> Option<f64> {
