@@ -193,3 +193,45 @@ pub struct Environment {
     /// measured from it.
     pub water_level: f64,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The current profile is linear between its points and constant beyond them: with points
+    /// (−100 m, 0.2 m/s) and (0 m, 0.6 m/s), 0.4 m/s at −50 m and 0.3 m/s at −75 m, 0.2 m/s below
+    /// −100 m and 0.6 m/s above 0 m (z is the height above the mudline; to rounding).
+    #[test]
+    fn the_current_is_linear_between_its_points() {
+        let h = Hydro {
+            water_density: 1025.0,
+            cd_normal: 1.0,
+            cd_axial: 0.0,
+            ca_normal: 1.0,
+            current: vec![(-100.0, 0.2), (0.0, 0.6)],
+        };
+        for (z, u) in [
+            (-50.0, 0.4),
+            (-75.0, 0.3),
+            (-150.0, 0.2),
+            (-100.0, 0.2),
+            (5.0, 0.6),
+        ] {
+            assert!(
+                (h.current_at(z) - u).abs() < 1e-15,
+                "at {z} m: {}",
+                h.current_at(z)
+            );
+        }
+        let uniform = Hydro {
+            current: vec![(-100.0, 0.5)],
+            ..h.clone()
+        };
+        assert_eq!(uniform.current_at(-30.0), 0.5);
+        let none = Hydro {
+            current: vec![],
+            ..h
+        };
+        assert_eq!(none.current_at(-30.0), 0.0);
+    }
+}
