@@ -253,10 +253,17 @@ pub(super) fn axes<DB: DrawingBackend>(
     x: &str,
     y: &str,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (xr, yr) = (c.x_range(), c.y_range());
+    let (fx, fy) = (
+        crate::plot::ticks(xr.start, xr.end),
+        crate::plot::ticks(yr.start, yr.end),
+    );
     c.configure_mesh()
         .disable_mesh()
         .x_desc(x)
         .y_desc(y)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .label_style(("sans-serif", 12))
         .draw()
 }

@@ -7,7 +7,7 @@ use catena::AppError;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{init_fonts, pixels, plot_err, write_image, OpaqueGrid};
+use super::{init_fonts, pixels, plot_err, ticks, write_image, OpaqueGrid};
 use crate::fatigue::{minimum, Lives};
 
 /// `life.png`: life along the arc (log scale), the whole line and the touchdown zone, with the
@@ -74,6 +74,7 @@ pub fn life_png(
                 .opaque_grid()
                 .x_desc("arc length from the top (m)")
                 .y_desc("fatigue life (years)")
+                .x_label_formatter(&ticks(a0, a1))
                 .y_label_formatter(&|v| format!("{v:.0e}"))
                 .draw()
                 .map_err(|e| perr(e.to_string()))?;

@@ -88,6 +88,7 @@ pub fn soil_test(
             .opaque_grid()
             .x_desc("P/D (kPa)  (positive: resistance, negative: suction)")
             .y_desc("penetration z/D (down)")
+            .x_label_formatter(&ticks(x0, x1))
             .y_label_formatter(&|v| format!("{:.2}", -v + 0.0))
             .label_style(("sans-serif", 16))
             .draw()
@@ -185,8 +186,11 @@ fn cycles_panel<DB: DrawingBackend>(
         .y_label_area_size(80)
         .build_cartesian_2d(0.0..n + 1.0, ya..yb)
         .map_err(|e| e.to_string())?;
+    let (fx, fy) = (ticks(0.0, n + 1.0), ticks(ya, yb));
     c2.configure_mesh()
         .opaque_grid()
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .x_desc("cycle")
         .y_desc("cumulative penetration since the first cycle, Δz/D")
         .label_style(("sans-serif", 16))
