@@ -108,7 +108,7 @@ pub(super) fn touchdown_panel<DB: DrawingBackend>(
             hi / 1e3
         ),
     };
-    let mut c = ChartBuilder::on(&mid)
+    let mut c = ChartBuilder::on(mid)
         .margin(6)
         .caption(
             format!(
@@ -209,7 +209,7 @@ pub(super) fn moment_panel<DB: DrawingBackend>(
         .filter(|&i| rec.arc[i] >= s0 && rec.arc[i] <= s1)
         .collect();
     let (mlo, mhi) = geo.moment_range;
-    let mut c = ChartBuilder::on(&bottom)
+    let mut c = ChartBuilder::on(bottom)
         .margin(6)
         .caption(
             "bending moment: now (line), least and greatest so far (band); negative = sag",

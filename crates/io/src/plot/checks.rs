@@ -205,7 +205,7 @@ pub fn extremes(
             };
             let gumbel_x = unit_of("block maximum (negated for a least)");
             // Peaks' excesses and block maxima scaled to the units: ln x + ln(scale), x·scale.
-            let weibull: (Vec<(f64, f64)>, Vec<(f64, f64)>) = (
+            let weibull: (Points, Points) = (
                 p.weibull
                     .0
                     .iter()
@@ -217,7 +217,7 @@ pub fn extremes(
                     .map(|&(a, b)| (a + scale.ln(), b))
                     .collect(),
             );
-            let gumbel: (Vec<(f64, f64)>, Vec<(f64, f64)>) = (
+            let gumbel: (Points, Points) = (
                 p.gumbel.0.iter().map(|&(a, b)| (a * scale, b)).collect(),
                 p.gumbel.1.iter().map(|&(a, b)| (a * scale, b)).collect(),
             );
@@ -412,10 +412,7 @@ pub fn strength(
 
 /// Values on Gumbel paper, `(v, −ln(−ln F))` at the plotting positions `F = i/(n + 1)` of the
 /// sorted values, and the fitted line between the least and the greatest (none without a fit).
-fn gumbel_paper(
-    values: &[f64],
-    fit: Option<catena::checks::extremes::Gumbel>,
-) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn gumbel_paper(values: &[f64], fit: Option<catena::checks::extremes::Gumbel>) -> (Points, Points) {
     let mut m = values.to_vec();
     m.sort_by(f64::total_cmp);
     let n = m.len() as f64;

@@ -223,7 +223,7 @@ mod tick_tests {
                 let keys = RangedCoordf64::from(lo..hi).key_points(10);
                 assert!(keys.len() >= 3, "{lo:e}..{hi:e}: {keys:?}");
                 let spacing = keys[1] - keys[0];
-                let labels: Vec<String> = keys.iter().map(|k| f(k)).collect();
+                let labels: Vec<String> = keys.iter().map(&f).collect();
                 for (k, l) in keys.iter().zip(&labels) {
                     let back: f64 = l.parse().unwrap_or_else(|_| panic!("{l} parses"));
                     assert!(
@@ -376,6 +376,9 @@ pub fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
         }
     }
 }
+
+/// A series of points `(x, y)`.
+pub(crate) type Points = Vec<(f64, f64)>;
 
 /// A chart of two linear f64 axes, as every panel here draws on.
 type Chart<'a, DB> = ChartContext<

@@ -198,7 +198,7 @@ pub fn realised_spectrum(record: &[(f64, f64)], resolution: f64) -> Vec<(f64, f6
 /// peak), with the target JONSWAP dashed.
 fn spectra_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
-    spectra: &[(Vec<(f64, f64)>, RGBColor, &str)],
+    spectra: &[(Points, RGBColor, &str)],
     target: Option<(f64, f64, f64)>,
 ) -> Result<(), String> {
     let wp = target
@@ -312,7 +312,11 @@ mod tests {
             (var - expected).abs() < 0.01 * expected,
             "{var} against {expected}"
         );
-        let peak = s.iter().max_by(|x, y| x.1.total_cmp(&y.1)).unwrap().0;
+        let peak = s
+            .iter()
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+            .expect("a peak")
+            .0;
         assert!((peak - w0).abs() <= res, "peak at {peak} rad/s, not {w0}");
     }
 

@@ -179,7 +179,7 @@ fn cycles_panel<DB: DrawingBackend>(
     let y_hi = pts.iter().map(|p| p.1).fold(0.0f64, f64::max);
     let y_lo = pts.iter().map(|p| p.1).fold(0.0f64, f64::min);
     let (ya, yb) = padded(y_lo, y_hi);
-    let mut c2 = ChartBuilder::on(&right)
+    let mut c2 = ChartBuilder::on(right)
         .caption("penetration at the end of each cycle", ("sans-serif", 22))
         .margin(15)
         .x_label_area_size(50)
@@ -212,11 +212,7 @@ fn cycles_panel<DB: DrawingBackend>(
 /// The test's path cut into segments of one mode within one cycle, as `(P/D in kPa, −z/D)`
 /// points, each with its mode and whether it is drawn grey. Many cycles merge into a block: then
 /// only the first three, every tenth and the last are drawn in the modes' colours.
-fn mode_segments(
-    case: &SoilTestCase,
-    r: &TestResult,
-    d: f64,
-) -> Vec<(Vec<(f64, f64)>, Mode, bool)> {
+fn mode_segments(case: &SoilTestCase, r: &TestResult, d: f64) -> Vec<(Points, Mode, bool)> {
     // Many cycles merge into a block: then only the first three, every tenth and the last are
     // drawn in the modes' colours, the others thin and light grey.
     let n_cycles = case.cycle_of_leg.iter().copied().max().unwrap_or(0);
