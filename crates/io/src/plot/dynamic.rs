@@ -126,8 +126,15 @@ pub fn dynamic_on(path: &Path, r: &DynamicRun, canvas: Option<Canvas>) -> Result
             .zip(&r.top.top_tension)
             .map(|(t, v)| (*t, v * 1e-3))
             .collect();
-        // A long record: the whole (a band per pixel column) and the 100 s around its largest value.
-        let (whole, window) = areas[5].split_horizontally(areas[5].dim_in_pixel().0 * 3 / 5);
+        // A long record (over 200 s): the whole (a band per pixel column) and beside it the 100 s
+        // around its largest value; a short one across the panel.
+        let span = th.last().map_or(0.0, |l| l.0) - th.first().map_or(0.0, |f| f.0);
+        let (whole, window) = if span > 2.0 * 100.0 {
+            let (w, n) = areas[5].split_horizontally(areas[5].dim_in_pixel().0 * 3 / 5);
+            (w, Some(n))
+        } else {
+            (areas[5].clone(), None)
+        };
         legend_panel(
             &whole,
             "top tension",
@@ -137,17 +144,19 @@ pub fn dynamic_on(path: &Path, r: &DynamicRun, canvas: Option<Canvas>) -> Result
             None,
         )
         .map_err(&perr)?;
-        let (near, _) = window_around_peak(&th, 100.0);
-        lines_panel(
-            &window,
-            "100 s around the largest top tension",
-            ("time (s)", "T_top (kN)"),
-            &[lab(near, blue, "")],
-            &[],
-            None,
-            false,
-        )
-        .map_err(&perr)?;
+        if let Some(window) = window {
+            let (near, _) = window_around_peak(&th, 100.0);
+            lines_panel(
+                &window,
+                "100 s around the largest top tension",
+                ("time (s)", "T_top (kN)"),
+                &[lab(near, blue, "")],
+                &[],
+                None,
+                false,
+            )
+            .map_err(&perr)?;
+        }
     }
     write_image(path, &rgb, size)
 }

@@ -9,6 +9,8 @@
 mod checks;
 pub mod convergence;
 mod dynamic;
+// The fatigue study's figures read its tables (`crate::fatigue`, with HDF5).
+#[cfg(feature = "hdf5")]
 pub mod fatigue;
 mod line;
 mod sea;

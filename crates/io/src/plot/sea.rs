@@ -117,19 +117,24 @@ pub fn sea(path: &Path, r: &DynamicRun) -> Result<(), AppError> {
 }
 
 /// A row: the whole record (left, two thirds) and the [`WINDOW`] around the largest value of its
-/// first series (right).
+/// first series (right); a record of at most twice the window across the row.
 fn record_and_window<DB: DrawingBackend>(
     row: &DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
     ylabel: &str,
     series: &[(Vec<(f64, f64)>, RGBColor)],
 ) -> Result<(), String> {
-    let width = row.dim_in_pixel().0;
-    let (whole, window) = row.split_horizontally(width * 2 / 3);
-    panel(&whole, caption, "time (s)", ylabel, series)?;
     let Some((first, _)) = series.first() else {
         return Ok(());
     };
+    let span = first.last().map_or(0.0, |l| l.0) - first.first().map_or(0.0, |f| f.0);
+    if span <= 2.0 * WINDOW {
+        // A short record reads whole.
+        return panel(row, caption, "time (s)", ylabel, series);
+    }
+    let width = row.dim_in_pixel().0;
+    let (whole, window) = row.split_horizontally(width * 2 / 3);
+    panel(&whole, caption, "time (s)", ylabel, series)?;
     let (_, (lo, hi)) = window_around_peak(first, WINDOW);
     let near: Vec<(Vec<(f64, f64)>, RGBColor)> = series
         .iter()
