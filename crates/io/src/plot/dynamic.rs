@@ -128,8 +128,7 @@ pub fn dynamic_on(path: &Path, r: &DynamicRun, canvas: Option<Canvas>) -> Result
             .collect();
         // A long record (over 200 s): the whole (a band per pixel column) and beside it the 100 s
         // around its largest value; a short one across the panel.
-        let span = th.last().map_or(0.0, |l| l.0) - th.first().map_or(0.0, |f| f.0);
-        let (whole, window) = if span > 2.0 * 100.0 {
+        let (whole, window) = if wants_window(&th) {
             let (w, n) = areas[5].split_horizontally(areas[5].dim_in_pixel().0 * 3 / 5);
             (w, Some(n))
         } else {
@@ -145,7 +144,7 @@ pub fn dynamic_on(path: &Path, r: &DynamicRun, canvas: Option<Canvas>) -> Result
         )
         .map_err(&perr)?;
         if let Some(window) = window {
-            let (near, _) = window_around_peak(&th, 100.0);
+            let (near, _) = window_around_peak(&th, WINDOW);
             lines_panel(
                 &window,
                 "100 s around the largest top tension",

@@ -295,14 +295,7 @@ fn framed_chart<'a, DB: DrawingBackend>(
     axes: (&str, &str),
     x: (f64, f64),
     y: (f64, f64),
-) -> Result<
-    ChartContext<
-        'a,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    String,
-> {
+) -> Result<Chart<'a, DB>, String> {
     framed_chart_sized(area, caption, axes, x, y, 18)
 }
 
@@ -314,14 +307,7 @@ fn framed_chart_sized<'a, DB: DrawingBackend>(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     caption_size: u32,
-) -> Result<
-    ChartContext<
-        'a,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    String,
-> {
+) -> Result<Chart<'a, DB>, String> {
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", caption_size))
         .margin(12)
@@ -452,6 +438,16 @@ fn line_or_band<'a, 'b, DB: DrawingBackend + 'a>(
             colour.stroke_width(1),
         ))
         .map_err(|e| e.to_string())
+}
+
+/// What a reader's window of a long record spans, s.
+pub const WINDOW: f64 = 100.0;
+
+/// Whether a record `(t, value)` is long enough to be drawn with a [`WINDOW`] beside it (more than
+/// twice the window); a shorter one reads whole.
+pub fn wants_window(points: &[(f64, f64)]) -> bool {
+    let span = points.last().map_or(0.0, |l| l.0) - points.first().map_or(0.0, |f| f.0);
+    span > 2.0 * WINDOW
 }
 
 /// The points of a series within `span` of its largest absolute value's x (a window a reader can

@@ -18,9 +18,6 @@ use catena::AppError;
 
 use super::*;
 
-/// What a reader's window of a long record spans, s.
-const WINDOW: f64 = 100.0;
-
 /// The sea and the hang-off (runs with waves). Left, the whole record (a band per pixel column
 /// where it is long); right, the 100 s around its largest value: the wave elevation at the RAO
 /// origin (or above the top end without a vessel) and the vessel's pitch; the hang-off's
@@ -127,8 +124,7 @@ fn record_and_window<DB: DrawingBackend>(
     let Some((first, _)) = series.first() else {
         return Ok(());
     };
-    let span = first.last().map_or(0.0, |l| l.0) - first.first().map_or(0.0, |f| f.0);
-    if span <= 2.0 * WINDOW {
+    if !wants_window(first) {
         // A short record reads whole.
         return panel(row, caption, "time (s)", ylabel, series);
     }
