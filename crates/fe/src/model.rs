@@ -298,6 +298,26 @@ impl LineModel {
                 });
             }
         }
+        Ok(Self::from_elements(
+            elements,
+            (spec.top, spec.anchor),
+            spec.seabed,
+            spec.flexjoint.map(|(stiffness, neutral)| FlexJoint {
+                node: 0,
+                stiffness,
+                neutral,
+            }),
+        ))
+    }
+
+    /// A line of these elements (top first) between these supports: the nodes' arc lengths,
+    /// tributary lengths, diameters and dead loads, and the equations' numbers.
+    fn from_elements(
+        elements: Vec<Element>,
+        (top, anchor): (Support, Support),
+        seabed: Option<SeabedContact>,
+        flexjoint: Option<FlexJoint>,
+    ) -> Self {
         let nn = elements.len() + 1;
         let mut arc = vec![0.0; nn];
         let mut tributary = vec![0.0; nn];
@@ -320,7 +340,7 @@ impl LineModel {
         node_hydro_od[0] = elements[0].hydro_od;
         node_hydro_od[nn - 1] = elements[nn - 2].hydro_od;
         let mut fixed = vec![false; 3 * nn];
-        for (node, sup) in [(0, spec.top), (nn - 1, spec.anchor)] {
+        for (node, sup) in [(0, top), (nn - 1, anchor)] {
             if sup != Support::Free {
                 fixed[3 * node] = true;
                 fixed[3 * node + 1] = true;
@@ -337,7 +357,7 @@ impl LineModel {
                 n_eq += 1;
             }
         }
-        Ok(Self {
+        Self {
             arc,
             elements,
             tributary,
@@ -347,19 +367,15 @@ impl LineModel {
             equation,
             n_eq,
             dead_load,
-            seabed: spec.seabed,
-            flexjoint: spec.flexjoint.map(|(stiffness, neutral)| FlexJoint {
-                node: 0,
-                stiffness,
-                neutral,
-            }),
-            supports: (spec.top, spec.anchor),
+            seabed,
+            flexjoint,
+            supports: (top, anchor),
             attachments: Vec::new(),
             seabed_zones: Vec::new(),
             node_seabed: Vec::new(),
             diameter_laws: Vec::new(),
             mudline_profile: Vec::new(),
-        })
+        }
     }
 
     /// The Model with each node's Morison coefficients, where a line type has its own: the mean of
@@ -507,6 +523,68 @@ impl LineModel {
             self.attachments.push(Attachment { node, ..*a });
         }
         self
+    }
+
+    /// The line with `n` more elements like its top one but of length `l0` above its top node:
+    /// a pipe continued beyond its top end (a lay's pipe still on the vessel,
+    /// [`LineModel::window`] takes the part in the water). The new nodes come first; the supports,
+    /// the seabed and the flexjoint (at the new top) stay. Attachments, zones' assignments and
+    /// per-node coefficients are not carried (a lay scene has none).
+    pub fn with_pipe_above(&self, n: usize, l0: f64) -> Self {
+        let top = Element {
+            l0,
+            ..self.elements[0]
+        };
+        let elements: Vec<Element> = std::iter::repeat_n(top, n)
+            .chain(self.elements.iter().copied())
+            .collect();
+        let mut m = Self::from_elements(elements, self.supports, self.seabed, self.flexjoint);
+        m.seabed_zones = self.seabed_zones.clone();
+        m.diameter_laws = self.diameter_laws.clone();
+        m.mudline_profile = self.mudline_profile.clone();
+        m
+    }
+
+    /// The part of the line from node `first` to node `last` (`first < last`) as a line of its
+    /// own: the same elements, held at `last` (position and rotation: a node frozen where it
+    /// lies), `top` at `first`, with `flexjoint` there if given. Arc lengths start at 0 at
+    /// `first`. Each node's own seabed law and coefficients, and the attachments between, go
+    /// with it; the end nodes' tributary lengths and dead loads are their one element's halves
+    /// (they are prescribed: only their reactions read them).
+    pub fn window(
+        &self,
+        first: usize,
+        last: usize,
+        top: Support,
+        flexjoint: Option<FlexJoint>,
+    ) -> Self {
+        let mut w = Self::from_elements(
+            self.elements[first..last].to_vec(),
+            (top, Support::Fixed),
+            self.seabed,
+            flexjoint,
+        );
+        if !self.node_seabed.is_empty() {
+            w.node_seabed = self.node_seabed[first..=last].to_vec();
+        }
+        if !self.node_coefficients.is_empty() {
+            w.node_coefficients = self.node_coefficients[first..=last].to_vec();
+        }
+        w.seabed_zones = self.seabed_zones.clone();
+        w.diameter_laws = self.diameter_laws.clone();
+        w.mudline_profile = self.mudline_profile.clone();
+        for a in self
+            .attachments
+            .iter()
+            .filter(|a| (first..=last).contains(&a.node))
+        {
+            w.dead_load[3 * (a.node - first) + 1] -= a.weight;
+            w.attachments.push(Attachment {
+                node: a.node - first,
+                ..*a
+            });
+        }
+        w
     }
 
     /// Number of nodes.

@@ -2,7 +2,7 @@
 //! observer of the run), the JSON and text summaries, CSV tables and PNG plots.
 //!
 //! - [`h5`]: the HDF5 layout, the static writer and the streaming, restartable [`h5::Recorder`];
-//! - [`report`]: `summary.json` and the text summaries of static and dynamic runs;
+//! - [`report`]: `summary.json` and the text summaries of static and dynamic runs; [`lay`]: a lay's;
 //! - [`soil`]: the soil element test's CSV and summary;
 //! - [`series`]: time series in CSV and rainflow cycle tables;
 //! - [`convergence`]: the convergence study's CSV, JSON, text and plot;
@@ -18,6 +18,7 @@ pub mod convergence;
 pub mod fatigue;
 #[cfg(feature = "hdf5")]
 pub mod h5;
+pub mod lay;
 pub mod plot;
 pub mod report;
 pub mod series;

@@ -14,6 +14,7 @@
 //! registry of built-in outputs a scene asks for), and this module, which drives them.
 
 pub mod checkpoint;
+pub mod lay;
 pub mod observe;
 pub mod observers;
 pub mod outputs;

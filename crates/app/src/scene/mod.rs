@@ -10,6 +10,7 @@
 mod checks;
 mod dynamic;
 pub mod edit;
+pub mod lay;
 mod line;
 mod outputs;
 pub mod riser;

@@ -56,6 +56,8 @@ pub struct RiserScene {
     pub dynamic: Option<DynamicSpec>,
     /// The run's size, estimated from the tables (checked against `[limits]`).
     pub size: RunSize,
+    /// The pipe's installation (`[lay]`), if the scene is a lay.
+    pub lay: Option<super::lay::LaySpec>,
 }
 
 impl RiserScene {
@@ -129,6 +131,7 @@ impl RiserScene {
             }
         };
         let size = run_size(file, raw)?;
+        let lay = super::lay::lay_spec(file, raw)?;
         let model = line::line_model(file, raw, segments)?;
         let ends = line::ends(file, raw)?;
         check_solvers(file, raw)?;
@@ -190,6 +193,7 @@ impl RiserScene {
             hydro,
             dynamic,
             size,
+            lay,
         })
     }
 }

@@ -450,6 +450,52 @@ pub struct GaugeTable {
     pub midway_touchdown_lift: Option<f64>,
 }
 
+/// How the J-lay tower holds the pipe, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TowerKey {
+    /// Position and angle held.
+    #[default]
+    Clamped,
+    /// Position held; the angle on a rotational spring (`tower_stiffness`).
+    Hinged,
+}
+
+/// How the pipe is paid out, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PayoutKey {
+    /// At the vessel's speed.
+    #[default]
+    Position,
+    /// By a tensioner holding a target top tension.
+    Tension,
+}
+
+/// `[lay]`: the pipe's installation (`crate::run::lay`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct LayTable {
+    pub speed: f64,
+    pub length: Option<f64>,
+    pub pipe_length: Option<f64>,
+    pub tower_angle_deg: Option<f64>,
+    #[serde(default)]
+    pub tower: TowerKey,
+    pub tower_stiffness: Option<f64>,
+    #[serde(default)]
+    pub payout: PayoutKey,
+    pub target_tension: Option<f64>,
+    pub gain: Option<f64>,
+    pub max_payout_rate: Option<f64>,
+    pub time_constant: Option<f64>,
+    pub element_length: Option<f64>,
+    pub freeze_tolerance: Option<f64>,
+    pub freeze_behind: Option<f64>,
+    pub ramp: Option<f64>,
+}
+
 /// A riser scene file as written.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -484,6 +530,7 @@ pub struct RiserFile {
     #[serde(default)]
     pub attachment: Vec<AttachmentTable>,
     pub limits: Option<LimitsTable>,
+    pub lay: Option<LayTable>,
 }
 
 /// `[limits]`: the largest run a scene may ask for. A run is sized before anything is built (elements

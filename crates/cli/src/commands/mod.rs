@@ -9,6 +9,7 @@ pub mod check;
 pub mod convergence;
 pub mod extremes;
 pub mod fatigue;
+pub mod lay;
 pub mod rainflow;
 pub mod run;
 pub mod sequence;

@@ -60,15 +60,18 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     let restart = opts.restart.as_deref().map(Checkpoint::read).transpose()?;
     let scene = statics::read_scene(case)?;
     warn(&scene);
-    if scene.dynamic.is_none() {
+    if scene.lay.is_some() {
+        return super::lay::run_lay(scene, out, opts, restart.is_some());
+    } else if scene.dynamic.is_none() {
         return Err(AppError::Run {
             file: scene.file.clone(),
             message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
         });
     }
-    let t_statics = Instant::now();
-    let st = statics::solve(scene)?;
-    let statics_seconds = t_statics.elapsed().as_secs_f64();
+    let (st, statics_seconds) = {
+        let t = Instant::now();
+        (statics::solve(scene)?, t.elapsed().as_secs_f64())
+    };
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
     let h5p = out.join("results.h5");
     let gauge_names: Vec<String> = st.scene.dynamic.as_ref().map_or_else(Vec::new, |d| {

@@ -49,11 +49,13 @@ use catena_fe::assembly::LineResults;
 use hdf5::types::VarLenUnicode;
 
 mod after;
+mod lay;
 mod read;
 mod recorder;
 mod sink;
 
 pub use after::{write_design_check, write_fatigue, write_ranges};
+pub use lay::write_lay;
 pub use read::{read_animation, read_extreme_channels, Channel};
 pub use recorder::Recorder;
 use recorder::*;

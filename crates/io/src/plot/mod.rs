@@ -9,6 +9,7 @@
 mod checks;
 pub mod convergence;
 mod dynamic;
+mod lay;
 // The fatigue study's figures read its tables (`crate::fatigue`, with HDF5).
 #[cfg(feature = "hdf5")]
 pub mod fatigue;
@@ -20,6 +21,7 @@ pub mod sweep;
 
 pub use checks::{design_check, extremes, strength};
 pub use dynamic::{dynamic, dynamic_on, gauges};
+pub use lay::lay;
 pub use line::{ranges, ranges_on, static_line};
 pub use sea::sea;
 pub use sequence::{sequence, SequencePlot};

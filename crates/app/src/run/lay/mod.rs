@@ -1,0 +1,721 @@
+//! A pipe's installation by J-lay: the vessel moves along the route, the pipe leaves the tower and
+//! is paid out, each point of it passes through the touchdown zone and comes to rest on the
+//! seabed with the embedment the hysteretic law gives it.
+//!
+//! **Material points.** The whole pipe is one mesh from the start (`full`; node 0 is the pipe's
+//! last end, on the vessel; arc length from there), so each node is a point of the pipe and keeps
+//! its own seabed history from the moment it lands. The part not yet paid out waits on the vessel
+//! along the tower; the part far behind the touchdown is frozen where it lies. Only the window
+//! between them is solved ([`window`]), so the cost of a simulated second does not grow with the
+//! length laid.
+//!
+//! **The tower.** The window's top node is the pipe's node just above the tower's exit, held on the
+//! tower's line (clamped at the tower's angle, or hinged on a rotational spring); the exit moves
+//! with the vessel (its speed `V` along +x, plus the wave-driven motion of `[vessel]` at the
+//! tower). Paying out a length `ds` of pipe slides that node down the tower by `ds·(1 + ε)`, `ε =
+//! T/EA` the strain at the top when it came onto the tower; when it reaches the exit it is free, and
+//! the next node of the pipe becomes the window's top, one element above the exit along the tower
+//! (the element between them stretched by the same `ε`, so that it carries the top tension from
+//! the start). Paid in (a tensioner that pays in), the node below the top is taken back onto the
+//! tower when the top rises an element above the exit.
+//!
+//! The clamp acts at the top node, which is up to one element above the exit: where the tower's
+//! angle is the pipe's natural departure angle (the default) this moves nothing; otherwise the
+//! clamp's place jitters by up to one element along the tower.
+//!
+//! **Payout.** Position control pays out at the vessel's speed. Tension control moves the payout
+//! rate towards the demand `V + g·(T − T_target)` (`g` the gain) with the tensioner's time
+//! constant `τ`, limited to ±`max_payout_rate`, from the top tension `T` (at the exit) of the last
+//! converged step (explicit in the step), read through a first-order filter ([`TENSION_FILTER`]).
+//! The vessel's speed (and position control's payout) rises from 0 to `V` over `[lay] ramp` (a
+//! quintic, as the waves' ramp). The time constant is what keeps the loop stable: paying
+//! out faster by `Δr` drops the tension at once by the pipe's axial impedance `√(EA·m)·Δr` (an
+//! axial wave), so a demand taken at once would swing by `g·√(EA·m)` times its error each step (16
+//! for the 12-inch pipe at `g` = 2e-5 (m/s)/N); followed at `Δt/τ` a step, the error shrinks by
+//! `1 − (Δt/τ)(1 + g·√(EA·m))` instead.
+//!
+//! **Freezing.** Each time a node leaves the tower, the nodes at the window's bottom that lie at
+//! least `freeze_behind` behind the touchdown point (in x) and moved less than `freeze_tolerance`
+//! since the last time are frozen: the lowest node still in the window is held where it lies, and
+//! its as-laid embedment is taken ([`laid`]).
+//!
+//! Simplifications: the vessel's wave-driven motion is that of its start position (its phase in
+//! the waves does not follow the vessel along the route); its pitch turns a hinged tower's spring
+//! but not a clamped tower. The lay's records are kept in memory and written when the run ends
+//! (also when it fails or is interrupted: everything up to the last converged step).
+
+pub mod laid;
+pub mod window;
+
+use std::time::Instant;
+
+use catena_fe::assembly::{LineResults, Placement};
+use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel, StepError};
+use catena_fe::model::{FlexJoint, LineModel};
+use catena_fe::motion::TopMotion;
+use catena_seabed::law::Seabed;
+
+use crate::error::AppError;
+use crate::run::observe::Stop;
+use crate::run::statics::{self, StaticRun};
+use crate::scene::lay::{LaySpec, Payout, Tower};
+use crate::scene::riser::{DynamicSpec, RiserScene};
+use laid::{backbone_penetration, stats, LaidNodes, LayRecords, LaySummary};
+use window::Store;
+
+/// The time constant of the filter through which a tensioner reads the top tension, s [A]: it
+/// leaves out the top element's axial ringing at the time step's period, which the tensioner
+/// would otherwise feed back.
+pub const TENSION_FILTER: f64 = 1.0;
+
+/// A finished (or stopped) lay.
+#[derive(Debug)]
+pub struct LayRun {
+    /// The statics of the start.
+    pub statics: StaticRun,
+    /// The lay's table.
+    pub spec: LaySpec,
+    /// The dynamic table (time step, output interval, sea).
+    pub dynamic: DynamicSpec,
+    /// The whole pipe's mesh.
+    pub full: LineModel,
+    /// Nodes on the vessel at the start.
+    pub on_vessel: usize,
+    /// The tower's angle from the vertical, rad.
+    pub tower_angle: f64,
+    /// The tensioner's target, N (tension control).
+    pub target_tension: Option<f64>,
+    /// The records.
+    pub records: LayRecords,
+    /// Each material node.
+    pub nodes: LaidNodes,
+    /// The lay's numbers.
+    pub summary: LaySummary,
+    /// Every node's position `(x, z)` at the end (nodes still on the vessel: along the tower).
+    pub positions: Vec<[f64; 2]>,
+    /// The window at the end `(first, last)`.
+    pub window: (usize, usize),
+    /// Converged steps.
+    pub steps: u64,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Step cuts.
+    pub cuts: u32,
+    /// Times the window moved.
+    pub windows: u64,
+    /// Wall time of the dynamics, s.
+    pub wall_seconds: f64,
+    /// Why the lay ended early, if it did.
+    pub stop: Option<Stop>,
+}
+
+impl LayRun {
+    /// x of the tower's exit at the start, m.
+    pub fn positions_exit_x(&self) -> f64 {
+        self.statics.placement.base[0] + self.statics.u[0]
+    }
+}
+
+/// What the caller sees after each converged step (progress, interruption).
+#[derive(Debug, Clone, Copy)]
+pub struct LayProgress {
+    /// Time, s.
+    pub t: f64,
+    /// The run's duration, s.
+    pub duration: f64,
+    /// Pipe paid out, m.
+    pub paid_out: f64,
+    /// Nodes in the solve.
+    pub window_nodes: usize,
+}
+
+/// The scene's statics set up for the tower: a hinged tower's spring, or a clamped tower at a
+/// given angle (a spring 100 times the top element's own bending stiffness `EI/L`), as a
+/// flexjoint at the top whose neutral angle is the tower's (the static departure angle if none).
+pub fn statics_scene(mut scene: RiserScene) -> RiserScene {
+    let Some(lay) = scene.lay.clone() else {
+        return scene;
+    };
+    let top = scene.model.elements[0];
+    let stiffness = match (lay.tower, lay.tower_angle) {
+        (Tower::Hinged(k), _) => Some(k),
+        (Tower::Clamped, Some(_)) => Some(100.0 * top.section.ei / top.l0),
+        (Tower::Clamped, None) => None,
+    };
+    if let Some(stiffness) = stiffness {
+        scene.model.flexjoint = Some(FlexJoint {
+            node: 0,
+            stiffness,
+            neutral: 0.0,
+        });
+        scene.flexjoint_neutral_from_vertical = lay.tower_angle;
+    }
+    scene
+}
+
+/// The whole path: the statics of the start, then the lay.
+pub fn simulate_lay(
+    scene: RiserScene,
+    on_step: &mut dyn FnMut(&LayProgress) -> bool,
+) -> Result<LayRun, AppError> {
+    lay(statics::solve(statics_scene(scene))?, on_step)
+}
+
+/// Lays the pipe of a solved lay scene (see [`statics_scene`]); `on_step` sees every converged
+/// step and stops the lay by returning `false`.
+pub fn lay(
+    st: StaticRun,
+    on_step: &mut dyn FnMut(&LayProgress) -> bool,
+) -> Result<LayRun, AppError> {
+    let t0 = Instant::now();
+    let mut l = Lay::new(&st)?;
+    let stop = l.run(on_step)?;
+    l.finish();
+    let summary = l.summary(&st);
+    Ok(LayRun {
+        spec: l.spec.clone(),
+        dynamic: l.dspec.clone(),
+        on_vessel: l.on_vessel,
+        tower_angle: l.phi,
+        target_tension: l.target,
+        records: std::mem::take(&mut l.records),
+        positions: l.positions(),
+        window: (l.first, l.last),
+        steps: l.state.step,
+        iterations: l.iterations,
+        cuts: l.cuts,
+        windows: l.windows,
+        nodes: l.nodes,
+        full: l.full,
+        summary,
+        wall_seconds: t0.elapsed().as_secs_f64(),
+        stop,
+        statics: st,
+    })
+}
+
+/// The lay in progress: the Model of the whole pipe, the store, the window and the tower.
+struct Lay {
+    file: String,
+    spec: LaySpec,
+    dspec: DynamicSpec,
+    full: LineModel,
+    base: Placement,
+    store: Store,
+    on_vessel: usize,
+    first: usize,
+    last: usize,
+    dm: DynamicModel,
+    ws: DynWorkspace,
+    state: DynState,
+    res: LineResults,
+    /// The tower: its angle from the vertical, the nodes' angle on it, its upward direction.
+    phi: f64,
+    theta: f64,
+    up: [f64; 2],
+    exit0: [f64; 2],
+    ea: f64,
+    eps: f64,
+    d_top: f64,
+    vessel_x: f64,
+    paid: f64,
+    rate: f64,
+    target: Option<f64>,
+    tension: f64,
+    /// The tension the tensioner reads: `tension` through a first-order filter.
+    measured: f64,
+    nodes: LaidNodes,
+    records: LayRecords,
+    moved_from: Vec<[f64; 2]>,
+    iterations: usize,
+    cuts: u32,
+    windows: u64,
+}
+
+impl Lay {
+    fn new(st: &StaticRun) -> Result<Self, AppError> {
+        let scene = &st.scene;
+        let file = scene.file.clone();
+        let fail = |message: String| AppError::Run {
+            file: file.clone(),
+            message,
+        };
+        let spec = scene
+            .lay
+            .clone()
+            .ok_or_else(|| fail("key `lay`: expected a [lay] table for a lay run".into()))?;
+        let dspec = scene
+            .dynamic
+            .clone()
+            .ok_or_else(|| fail("key `dynamic`: expected a [dynamic] table".into()))?;
+        let top = st.model.elements[0];
+        let h = spec.element_length.unwrap_or(top.l0);
+        let extra = spec.pipe_length - st.model.length();
+        let o = (extra / h).ceil().max(1.0) as usize;
+        let full = st.model.with_pipe_above(o, h);
+        let theta0 = st.placement.base[2] + st.u[2];
+        // The static top's angle from the downward vertical (the line runs to −x from the top).
+        let phi0 = theta0.cos().abs().atan2(-theta0.sin());
+        let phi = spec.tower_angle.unwrap_or(phi0);
+        let up = [phi.sin(), phi.cos()];
+        // The tower's angle on the static top angle's branch (the same angle when `phi = phi0`).
+        let down = (-up[1]).atan2(-up[0]);
+        let theta = theta0
+            + ((down - theta0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI);
+        let exit0 = [
+            st.placement.base[0] + st.u[0],
+            st.placement.base[1] + st.u[1],
+        ];
+        let ea = top.section.ea;
+        let tension = st.results.tension[0];
+        let eps = tension / ea;
+        // The base: the tower's nodes along the tower above the exit (each element stretched by
+        // the top's strain), the line's where the statics' seed put them.
+        let n = full.nodes();
+        let mut q = vec![0.0; 3 * n];
+        for j in 0..o {
+            let d = (full.arc[o] - full.arc[j]) * (1.0 + eps);
+            q[3 * j] = exit0[0] + d * up[0];
+            q[3 * j + 1] = exit0[1] + d * up[1];
+            q[3 * j + 2] = theta;
+        }
+        q[3 * o..].copy_from_slice(&st.placement.base);
+        let base = Placement::new(&q);
+        let mut u = vec![0.0; 3 * n];
+        u[3 * o..].copy_from_slice(&st.u);
+        let untouched = full.seabed.as_ref().map_or(
+            catena_seabed::law::SeabedHistory::Linear(Default::default()),
+            |s| s.seabed.untouched(),
+        );
+        let (first, last) = (o - 1, n - 1);
+        let dm = window::model(&full, &base, (first, last), (spec.tower, theta), &dspec);
+        let mut ws = DynWorkspace::new(&dm.line).map_err(|source| AppError::Solver {
+            file: file.clone(),
+            source,
+        })?;
+        let state = dynamics::initial_state(&dm, &u[3 * first..], &mut ws);
+        let stride = state.friction_anchor.len() / dm.line.nodes();
+        let mut store = Store {
+            u,
+            v: vec![0.0; 3 * n],
+            a: vec![0.0; 3 * n],
+            f: vec![0.0; 3 * n],
+            history: vec![untouched; n],
+            friction: vec![0.0; stride * n],
+            stride,
+        };
+        store.keep(first, &state);
+        let target = match spec.payout {
+            Payout::Tension { target, .. } => Some(target.unwrap_or(tension)),
+            Payout::Position => None,
+        };
+        let mut res = LineResults::new(dm.line.nodes());
+        dynamics::results(&dm, &state, &ws, &mut res);
+        let nodes = LaidNodes::new(&full, o, &st.results.seabed_force);
+        let mut l = Self {
+            file,
+            d_top: full.elements[first].l0 * (1.0 + eps),
+            rate: 0.0,
+            spec,
+            dspec,
+            base,
+            store,
+            on_vessel: o,
+            first,
+            last,
+            dm,
+            ws,
+            state,
+            res,
+            phi,
+            theta,
+            up,
+            exit0,
+            ea,
+            eps,
+            vessel_x: 0.0,
+            paid: 0.0,
+            target,
+            tension,
+            measured: tension,
+            nodes,
+            records: LayRecords::default(),
+            moved_from: vec![[f64::NAN; 2]; n],
+            iterations: 0,
+            cuts: 0,
+            windows: 0,
+            full,
+        };
+        l.mark_positions();
+        l.record();
+        Ok(l)
+    }
+
+    /// Node `g`'s position `(x, z)` from the store.
+    fn at(&self, g: usize) -> [f64; 2] {
+        [
+            self.base.base[3 * g] + self.store.u[3 * g],
+            self.base.base[3 * g + 1] + self.store.u[3 * g + 1],
+        ]
+    }
+
+    /// Window node `i`'s position from the State.
+    fn at_window(&self, i: usize) -> [f64; 2] {
+        let g = self.first + i;
+        [
+            self.base.base[3 * g] + self.state.u[3 * i],
+            self.base.base[3 * g + 1] + self.state.u[3 * i + 1],
+        ]
+    }
+
+    fn mark_positions(&mut self) {
+        for i in 0..=self.last - self.first {
+            self.moved_from[self.first + i] = self.at_window(i);
+        }
+    }
+
+    /// The payout rate of the next step of `dt`: the vessel's speed, or the tensioner's rate
+    /// moved towards its demand `V + g·(T − T_target)` (explicit: from the last converged tension)
+    /// by `dt/τ` of the difference, within ±`max_rate`.
+    fn payout_rate(&self, dt: f64) -> f64 {
+        match (self.spec.payout, self.target) {
+            (
+                Payout::Tension {
+                    gain,
+                    max_rate,
+                    time_constant,
+                    ..
+                },
+                Some(target),
+            ) => {
+                let demand =
+                    self.speed_at(self.state.t + 0.5 * dt) + gain * (self.measured - target);
+                let f = (dt / time_constant).min(1.0);
+                (self.rate + f * (demand - self.rate)).clamp(-max_rate, max_rate)
+            }
+            _ => self.speed_at(self.state.t + 0.5 * dt),
+        }
+    }
+
+    /// The vessel's speed at `t`: `V` after the quintic ramp of `[lay] ramp`.
+    fn speed_at(&self, t: f64) -> f64 {
+        self.spec.speed * catena_fe::motion::quintic_ramp(t, self.spec.ramp).0
+    }
+
+    /// Steps to the end of the lay; the reason it stopped early, if it did.
+    fn run(
+        &mut self,
+        on_step: &mut dyn FnMut(&LayProgress) -> bool,
+    ) -> Result<Option<Stop>, AppError> {
+        let dt = self.dspec.dt;
+        let duration = self.dspec.duration;
+        let total_steps = (duration / dt - 1e-9).ceil() as u64;
+        while self.state.step < total_steps {
+            if self.spec.length.is_some_and(|len| self.paid >= len - 1e-9) {
+                break;
+            }
+            if let Err(e) = self.step(dt) {
+                return Ok(Some(Stop::Failed(e)));
+            }
+            if let Some((field, node)) = catena_fe::assembly::first_non_finite(
+                &self.res,
+                &self.state.u,
+                &self.state.v,
+                &self.state.a,
+            ) {
+                return Ok(Some(Stop::NonFinite {
+                    t: self.state.t,
+                    field,
+                    node: self.first + node,
+                    arc: self.full.arc[self.first + node],
+                }));
+            }
+            self.nodes.observe(
+                self.first,
+                &self.res,
+                1e-3 * self.full.elements[0].contact_od,
+            );
+            if self.state.step % self.dspec.output_every as u64 == 0 {
+                self.record();
+            }
+            self.move_window()?;
+            let p = LayProgress {
+                t: self.state.t,
+                duration,
+                paid_out: self.paid,
+                window_nodes: self.last - self.first + 1,
+            };
+            if !on_step(&p) {
+                return Ok(Some(Stop::Interrupted("interrupted".into())));
+            }
+        }
+        Ok(None)
+    }
+
+    /// One step of the lay: the top's motion for the step, the step, the payout.
+    fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        let rate = self.payout_rate(dt);
+        let speed = self.speed_at(self.state.t + 0.5 * dt);
+        let s = rate * (1.0 + self.eps);
+        let vel = [speed - s * self.up[0], -s * self.up[1]];
+        let b = &self.dm.placement.base;
+        let d0 = [
+            self.exit0[0] + self.vessel_x + self.d_top * self.up[0] - b[0],
+            self.exit0[1] + self.d_top * self.up[1] - b[1],
+        ];
+        let t = self.state.t;
+        // Linear over the step (the series' last point beyond it, so that the velocity at the
+        // step's end is the step's).
+        self.dm.motion = Some(TopMotion::Series(vec![
+            (t, d0[0], d0[1]),
+            (
+                t + 2.0 * dt,
+                d0[0] + 2.0 * dt * vel[0],
+                d0[1] + 2.0 * dt * vel[1],
+            ),
+        ]));
+        let info = dynamics::advance(&self.dm, &mut self.state, &mut self.ws, dt)?;
+        self.iterations += info.iterations;
+        self.cuts += info.cuts;
+        self.vessel_x += speed * dt;
+        self.paid += rate * dt;
+        self.d_top -= s * dt;
+        self.rate = rate;
+        dynamics::results(&self.dm, &self.state, &self.ws, &mut self.res);
+        self.tension = self.exit_tension();
+        self.measured += (self.tension - self.measured) * (dt / TENSION_FILTER).min(1.0);
+        Ok(())
+    }
+
+    /// The tension at the tower's exit: the top node's reaction less the submerged weight of the
+    /// pipe between it and the exit, along the tower.
+    fn exit_tension(&self) -> f64 {
+        let w = self.full.elements[self.first].weight;
+        self.res.tension[0] - w * self.d_top.max(0.0) / (1.0 + self.eps) * self.phi.cos()
+    }
+
+    /// Moves the window when the top node has reached the exit (or risen an element above it).
+    fn move_window(&mut self) -> Result<(), AppError> {
+        let l_top = self.full.elements[self.first].l0;
+        if self.d_top <= 0.0 {
+            if self.first == 0 {
+                return Err(AppError::Run {
+                    file: self.file.clone(),
+                    message: format!(
+                        "key `lay.pipe_length`: the pipe's last end left the tower at t = {:.3} s \
+                         ({:.3} m paid out); expected a pipe long enough for the lay",
+                        self.state.t, self.paid
+                    ),
+                });
+            }
+            self.store.keep(self.first, &self.state);
+            let last = self.freeze();
+            let k = self.first;
+            self.eps = self.tension / self.ea;
+            let l = self.full.elements[k - 1].l0 * (1.0 + self.eps);
+            let p = self.at(k);
+            self.place_on_tower(k - 1, [p[0] + l * self.up[0], p[1] + l * self.up[1]], k);
+            self.d_top += l;
+            self.rewindow(k - 1, last)
+        } else if self.d_top > l_top * (1.0 + self.eps) && self.first + 3 < self.last {
+            // Paid in: the node below the top goes back onto the tower.
+            self.store.keep(self.first, &self.state);
+            let k = self.first;
+            let l = l_top * (1.0 + self.eps);
+            let p = self.at(k);
+            self.place_on_tower(k + 1, [p[0] - l * self.up[0], p[1] - l * self.up[1]], k);
+            self.d_top -= l;
+            self.rewindow(k + 1, self.last)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Puts node `g` on the tower at `p`, at the tower's angle, moving with node `like`.
+    fn place_on_tower(&mut self, g: usize, p: [f64; 2], like: usize) {
+        let b = &self.base.base;
+        let s = &mut self.store;
+        s.u[3 * g] = p[0] - b[3 * g];
+        s.u[3 * g + 1] = p[1] - b[3 * g + 1];
+        s.u[3 * g + 2] = self.theta - b[3 * g + 2];
+        for c in 0..2 {
+            s.v[3 * g + c] = s.v[3 * like + c];
+            s.a[3 * g + c] = s.a[3 * like + c];
+        }
+        s.v[3 * g + 2] = 0.0;
+        s.a[3 * g + 2] = 0.0;
+        let st = s.stride;
+        if st > 0 {
+            s.friction[st * g] = p[0];
+            if st == 2 {
+                s.friction[st * g + 1] = p[1];
+            }
+        }
+    }
+
+    /// Freezes the nodes at the window's bottom that lie far enough behind the touchdown and have
+    /// stopped moving; takes their as-laid embedment; the window's new last node.
+    fn freeze(&mut self) -> usize {
+        let Some((i_td, _)) = catena_fe::statics::touchdown_point(&self.res.penetration) else {
+            return self.last;
+        };
+        let x_td = self.at(self.first + i_td)[0];
+        let mut last = self.last;
+        let lowest = (self.first + i_td + 2).max(self.first + 4);
+        let mut g = self.last;
+        while g > lowest {
+            g -= 1;
+            let p = self.at(g);
+            let m = self.moved_from[g];
+            let moved = (p[0] - m[0]).hypot(p[1] - m[1]);
+            let still = moved < self.spec.freeze_tolerance; // false for a NaN (a node new to the window)
+            if p[0] > x_td - self.spec.freeze_behind || !still {
+                break;
+            }
+            last = g;
+        }
+        for g in last..self.last {
+            let h = self.store.history[g];
+            self.nodes.lay(&self.full, g, self.at(g).into(), &h);
+        }
+        last
+    }
+
+    /// Makes the window `first..=last` from the store.
+    fn rewindow(&mut self, first: usize, last: usize) -> Result<(), AppError> {
+        let grid = self.state.wave_grid.take();
+        let old_first = self.first;
+        let mut state = self.store.window_state(
+            (first, last),
+            (self.state.t, self.state.step),
+            grid.as_ref().map(|g| (old_first, g)),
+        );
+        let dm = window::model(
+            &self.full,
+            &self.base,
+            (first, last),
+            (self.spec.tower, self.theta),
+            &self.dspec,
+        );
+        let n = last - first + 1;
+        let ws = window::workspace(&dm, &mut state, &[0, 1, 2, n - 1]).map_err(|source| {
+            AppError::Solver {
+                file: self.file.clone(),
+                source,
+            }
+        })?;
+        (self.first, self.last) = (first, last);
+        self.dm = dm;
+        self.ws = ws;
+        self.state = state;
+        self.res = LineResults::new(n);
+        dynamics::results(&self.dm, &self.state, &self.ws, &mut self.res);
+        self.res.tension[0] = self.tension;
+        self.windows += 1;
+        self.mark_positions();
+        Ok(())
+    }
+
+    /// The touchdown point in the window: `(x, arc from the pipe's last end)`, interpolated
+    /// where the penetration crosses zero ([`catena_fe::statics::touchdown_point`]).
+    fn touchdown(&self) -> Option<(f64, f64)> {
+        let (i, f) = catena_fe::statics::touchdown_point(&self.res.penetration)?;
+        let (a, b) = (self.at_window(i - 1)[0], self.at_window(i)[0]);
+        let arc = &self.full.arc;
+        let g = self.first + i;
+        Some((a + f * (b - a), arc[g - 1] + f * (arc[g] - arc[g - 1])))
+    }
+
+    fn record(&mut self) {
+        let td = self.touchdown();
+        let a_exit = self.full.arc[self.first] + self.d_top / (1.0 + self.eps);
+        let td_x = td.map_or(f64::NAN, |p| p.0);
+        let r = &mut self.records;
+        r.time.push(self.state.t);
+        r.paid_out.push(self.paid);
+        r.vessel_x.push(self.vessel_x);
+        r.top_tension.push(self.tension);
+        r.payout_rate.push(self.rate);
+        r.touchdown_x.push(td_x);
+        r.touchdown_arc.push(td.map_or(f64::NAN, |p| p.1 - a_exit));
+        r.window_nodes.push((self.last - self.first + 1) as f64);
+        let n = self.res.moment.len();
+        let sag = self.res.moment[1..n - 1]
+            .iter()
+            .fold(0.0f64, |m, &x| m.min(x));
+        r.sag_moment.push(sag);
+    }
+
+    /// The end: the window's State into the store, and the as-laid embedment of the nodes that lie
+    /// far enough behind the touchdown but were not frozen.
+    fn finish(&mut self) {
+        self.store.keep(self.first, &self.state);
+        let Some((i_td, _)) = catena_fe::statics::touchdown_point(&self.res.penetration) else {
+            return;
+        };
+        let x_td = self.at(self.first + i_td)[0];
+        for g in self.first + i_td..self.last {
+            let p = self.at(g);
+            if p[0] <= x_td - self.spec.freeze_behind && self.nodes.as_laid[g].is_nan() {
+                let h = self.store.history[g];
+                self.nodes.lay(&self.full, g, p.into(), &h);
+            }
+        }
+    }
+
+    fn positions(&self) -> Vec<[f64; 2]> {
+        (0..self.full.nodes()).map(|g| self.at(g)).collect()
+    }
+
+    fn summary(&self, st: &StaticRun) -> LaySummary {
+        let top = self.full.elements[0];
+        let w = top.weight;
+        let d = top.contact_od;
+        let law: Option<&Seabed> = self.full.seabed_law(self.on_vessel);
+        let z = |p: f64| law.map_or(f64::NAN, |s| backbone_penetration(s, p, d));
+        let steady = |g: &usize| self.nodes.landed[*g] && self.nodes.as_laid[*g].is_finite();
+        let n = self.full.nodes();
+        let (mean, lo, hi, count) = stats((0..n).filter(steady).map(|g| self.nodes.as_laid[g]));
+        let lay_factor = (0..n)
+            .filter(steady)
+            .map(|g| self.nodes.max_contact[g])
+            .fold(f64::NAN, f64::max)
+            / w;
+        let static_max = st.results.seabed_force.iter().copied().fold(0.0, f64::max);
+        let z_w = z(w);
+        let td = st.results.seabed_force.iter().position(|&p| p > 0.0);
+        let t0 = td.map_or(f64::NAN, |i| st.results.tension[i]);
+        let lambda = top.section.ei * (w / z_w) / (t0 * t0);
+        let r = &self.records;
+        let (_, t_lo, t_hi, _) = stats(r.top_tension.iter().copied());
+        let (_, m_lo, _, _) = stats(r.sag_moment.iter().copied());
+        let sag_strain = -m_lo * 0.5 * top.od / top.section.ei + t_hi / top.section.ea;
+        let (episodes, ..) = stats(
+            (0..n)
+                .filter(steady)
+                .map(|g| f64::from(self.nodes.episodes[g])),
+        );
+        LaySummary {
+            paid_out: self.paid,
+            vessel_travel: self.vessel_x,
+            steady_nodes: count,
+            as_laid_mean: mean,
+            as_laid_min: lo,
+            as_laid_max: hi,
+            submerged_weight: w,
+            self_weight_embedment: z_w,
+            static_embedment: z(static_max),
+            static_lay_factor: static_max / w,
+            lay_factor,
+            lay_factor_closed_form: 0.6 + 0.4 * lambda.powf(0.25),
+            lambda,
+            dynamic_embedment_factor: mean / z_w,
+            top_tension_min: t_lo,
+            top_tension_max: t_hi,
+            sag_moment_max: -m_lo,
+            sag_strain_max: sag_strain,
+            episodes_mean: episodes,
+        }
+    }
+}

@@ -1,0 +1,145 @@
+//! The part of the pipe a lay solves: its window of material nodes, and the State carried from one
+//! window to the next.
+//!
+//! The whole pipe is one material mesh (`full`, node 0 the pipe's last end on the vessel, arc
+//! length from there), with one base configuration (`Placement`: the tower's nodes along the
+//! tower, the rest where the statics' seed put them). A window is the nodes `first..=last`: the
+//! top node `first` prescribed on the tower just above its exit (clamped, or on the tower's
+//! rotational spring), every node below it free, and `last` held where it lies (a frozen node).
+//! Nodes above the window wait on the vessel and nodes below it are frozen: neither is in the
+//! solve, so a step costs what the window costs, whatever the length already laid.
+//!
+//! The State of the nodes outside the window is kept in [`Store`] (positions, velocities,
+//! accelerations, forces, seabed histories, friction anchors): a window's State is a slice of it,
+//! and goes back into it when the window moves. Moving a window changes the equations, so its
+//! workspace (and its reused factorisation) is made anew; the forces `F_n` of its end nodes and of
+//! the node that has just left the tower are evaluated at the State ([`dynamics::refresh`]), the
+//! others' are carried.
+
+use catena_fe::assembly::Placement;
+use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel};
+use catena_fe::model::{FlexJoint, LineModel, Support};
+use catena_fe::wave_sampling::KinematicsGrid;
+use catena_seabed::law::SeabedHistory;
+
+use crate::scene::lay::Tower;
+use crate::scene::riser::DynamicSpec;
+
+/// The State of every material node, for the nodes outside the window.
+#[derive(Debug, Clone, Default)]
+pub struct Store {
+    /// Displacements from the base, 3 per node.
+    pub u: Vec<f64>,
+    /// Velocities.
+    pub v: Vec<f64>,
+    /// Accelerations.
+    pub a: Vec<f64>,
+    /// Non-inertial forces at the last converged step.
+    pub f: Vec<f64>,
+    /// Seabed histories.
+    pub history: Vec<SeabedHistory>,
+    /// Friction anchors, `stride` per node (0 without friction).
+    pub friction: Vec<f64>,
+    /// Friction anchor entries per node.
+    pub stride: usize,
+}
+
+/// The Model of the window `first..=last` of the material mesh.
+pub fn model(
+    full: &LineModel,
+    base: &Placement,
+    (first, last): (usize, usize),
+    (tower, tower_theta): (Tower, f64),
+    spec: &DynamicSpec,
+) -> DynamicModel {
+    let (support, flexjoint) = match tower {
+        Tower::Clamped => (Support::Fixed, None),
+        Tower::Hinged(stiffness) => (
+            Support::Pinned,
+            Some(FlexJoint {
+                node: 0,
+                stiffness,
+                neutral: tower_theta,
+            }),
+        ),
+    };
+    DynamicModel {
+        line: full.window(first, last, support, flexjoint),
+        placement: Placement {
+            base: base.base[3 * first..3 * (last + 1)].to_vec(),
+            chords: base.chords[first..last].to_vec(),
+        },
+        environment: spec.environment.clone(),
+        motion: None,
+        vessel: spec.vessel.clone(),
+        structural_damping: spec.structural_damping,
+        settings: spec.settings,
+    }
+}
+
+impl Store {
+    /// Writes a window's State (nodes from `first`) into the store.
+    pub fn keep(&mut self, first: usize, state: &DynState) {
+        let n = state.history.len();
+        let r = 3 * first..3 * (first + n);
+        self.u[r.clone()].copy_from_slice(&state.u);
+        self.v[r.clone()].copy_from_slice(&state.v);
+        self.a[r.clone()].copy_from_slice(&state.a);
+        self.f[r].copy_from_slice(&state.f_prev);
+        self.history[first..first + n].clone_from_slice(&state.history);
+        let s = self.stride;
+        self.friction[s * first..s * (first + n)].copy_from_slice(&state.friction_anchor);
+    }
+
+    /// The State of the window `first..=last` from the store, at `t` after `step` steps, with the
+    /// wave kinematics samples of the nodes that were in the window `old` (`None` elsewhere).
+    pub fn window_state(
+        &self,
+        (first, last): (usize, usize),
+        (t, step): (f64, u64),
+        old: Option<(usize, &KinematicsGrid)>,
+    ) -> DynState {
+        let r = 3 * first..3 * (last + 1);
+        let s = self.stride;
+        let wave_grid = old.map(|(old_first, g)| {
+            let pick = |samples: &Vec<Option<_>>| {
+                (first..=last)
+                    .map(|k| {
+                        k.checked_sub(old_first)
+                            .and_then(|i| samples.get(i).copied().flatten())
+                    })
+                    .collect()
+            };
+            KinematicsGrid {
+                index: g.index,
+                samples: [pick(&g.samples[0]), pick(&g.samples[1])],
+            }
+        });
+        DynState {
+            t,
+            step,
+            u: self.u[r.clone()].to_vec(),
+            v: self.v[r.clone()].to_vec(),
+            a: self.a[r.clone()].to_vec(),
+            f_prev: self.f[r].to_vec(),
+            history: self.history[first..=last].to_vec(),
+            wave_grid,
+            friction_anchor: self.friction[s * first..s * (last + 1)].to_vec(),
+        }
+    }
+}
+
+/// A fresh workspace for the window, with the forces `F_n` of the nodes `fresh` (window-local)
+/// evaluated at the State (the others' are carried).
+pub fn workspace(
+    dm: &DynamicModel,
+    state: &mut DynState,
+    fresh: &[usize],
+) -> Result<DynWorkspace, catena_fe::sparse::SolveError> {
+    let mut ws = DynWorkspace::new(&dm.line)?;
+    dynamics::refresh(dm, state, &mut ws);
+    for &i in fresh {
+        state.f_prev[3 * i..3 * i + 3].copy_from_slice(&ws.f[3 * i..3 * i + 3]);
+    }
+    Ok(ws)
+}

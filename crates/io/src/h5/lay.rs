@@ -1,0 +1,87 @@
+//! A lay's `results.h5`: the statics of its start (`/static`) and `/lay`: the records on the
+//! dimension `time` and each material node on the dimension `kp` (the distance along the pipe
+//! from the initiation anchor), with units.
+
+use super::*;
+
+/// Writes `results.h5` of a lay (created anew).
+pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppError> {
+    let err = h5err(path);
+    let f = hdf5::File::create(path).map_err(&err)?;
+    write_static_into(path, &f, &r.statics)?;
+    let g = f.create_group("lay").map_err(&err)?;
+    attr(
+        &g,
+        "convention",
+        "records on `time`; nodes on `kp` (unstretched distance along the pipe from the initiation \
+         anchor; `arc` from the pipe's last end); embedment of the invert positive down; NaN: not \
+         laid (or not measured)",
+    )
+    .map_err(&err)?;
+    num_attr(&g, "tower_angle", r.tower_angle).map_err(&err)?;
+    let rec = &r.records;
+    let series: [(&str, &[f64], &str); 9] = [
+        ("time", &rec.time, "s"),
+        ("paid_out", &rec.paid_out, "m"),
+        (
+            "vessel_x",
+            &rec.vessel_x,
+            "m (travel along +x since the start)",
+        ),
+        ("top_tension", &rec.top_tension, "N"),
+        ("payout_rate", &rec.payout_rate, "m/s"),
+        ("touchdown_x", &rec.touchdown_x, "m"),
+        (
+            "touchdown_arc",
+            &rec.touchdown_arc,
+            "m (unstretched, from the tower's exit)",
+        ),
+        ("window_nodes", &rec.window_nodes, "1 (nodes in the solve)"),
+        (
+            "sag_moment",
+            &rec.sag_moment,
+            "N·m (the most negative in the free span)",
+        ),
+    ];
+    for (name, data, units) in series {
+        vector(&g, name, data, units).map_err(&err)?;
+    }
+    let n = &r.nodes;
+    let pos: Vec<f64> = r.positions.iter().map(|p| p[0]).collect();
+    let posz: Vec<f64> = r.positions.iter().map(|p| p[1]).collect();
+    let episodes: Vec<f64> = n.episodes.iter().map(|&e| f64::from(e)).collect();
+    let landed: Vec<f64> = n.landed.iter().map(|&b| f64::from(u8::from(b))).collect();
+    let per_node: [(&str, &[f64], &str); 10] = [
+        ("kp", &n.kp, "m"),
+        ("arc", &n.arc, "m"),
+        ("as_laid_embedment", &n.as_laid, "m (positive down)"),
+        ("laid_x", &n.laid_x, "m"),
+        ("max_contact_force", &n.max_contact, "N/m"),
+        ("episodes", &episodes, "1 (uplift-repenetration episodes)"),
+        (
+            "strength_factor",
+            &n.strength,
+            "1 (NaN without degradation)",
+        ),
+        (
+            "landed_during_lay",
+            &landed,
+            "1 (1: off the seabed at the start; the steady part)",
+        ),
+        ("x", &pos, "m (at the end)"),
+        ("z", &posz, "m (at the end)"),
+    ];
+    for (name, data, units) in per_node {
+        vector(&g, name, data, units).map_err(&err)?;
+    }
+    let mut dims: Vec<(String, Vec<Option<&str>>)> = series[1..]
+        .iter()
+        .map(|(name, ..)| (format!("/lay/{name}"), vec![Some("/lay/time")]))
+        .collect();
+    dims.extend(
+        per_node[1..]
+            .iter()
+            .map(|(name, ..)| (format!("/lay/{name}"), vec![Some("/lay/kp")])),
+    );
+    dimension_scales(&f, &dims).map_err(&err)
+}
