@@ -489,6 +489,62 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "calm = -1.0",
         "sequence.calm",
     ),
+    (
+        "a negative lay speed",
+        "lay/jlay-12in-steady",
+        "speed = 0.05 ",
+        "speed = -0.05 ",
+        "lay.speed",
+    ),
+    (
+        "a tower angle over 90 degrees",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\ntower_angle_deg = 95.0",
+        "lay.tower_angle_deg",
+    ),
+    (
+        "a lay longer than the pipe",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\npipe_length = 500.0",
+        "lay.pipe_length",
+    ),
+    (
+        "a hinged tower without its stiffness",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\ntower = \"hinged\"",
+        "lay.tower_stiffness",
+    ),
+    (
+        "a tensioner without its gain",
+        "lay/jlay-12in-tension-surge",
+        "gain = 2.0e-5 ",
+        "# gain = 2.0e-5 ",
+        "lay.gain",
+    ),
+    (
+        "a tensioner's key in position control",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\nmax_payout_rate = 0.5",
+        "lay.max_payout_rate",
+    ),
+    (
+        "a prescribed top motion in a lay",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[motion.harmonic]\nheave = 1.0\nperiod = 10.0\n\n[lay]",
+        "motion",
+    ),
+    (
+        "a negative lay ramp",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\nramp = -1.0",
+        "lay.ramp",
+    ),
 ];
 
 #[test]

@@ -223,6 +223,14 @@ pub fn output_defs(scene: &RiserScene) -> Vec<OutputDef> {
         label: label.into(),
         unit,
     };
+    if scene.lay.is_some() {
+        return vec![
+            def("as_laid_embedment", "mean as-laid embedment", "mm"),
+            def("lay_factor", "touchdown lay factor", "1"),
+            def("top_tension_range", "top tension range", "kN"),
+            def("sag_moment_max", "sag bend's largest moment", "kN·m"),
+        ];
+    }
     if scene.model.seabed.is_some() {
         v.push(def(
             "tdz_moment_range",
@@ -344,14 +352,19 @@ pub fn variant(
                     .into(),
         });
     }
-    let mut v = scene.edited(
-        &[
-            Edit::scale("mesh[*].element_length", mesh_factor),
-            Edit::scale("dynamic.time_step", dt_factor),
-            Edit::remove("dynamic.output_interval"),
-        ],
-        files,
-    )?;
+    let mut edits = vec![
+        Edit::scale("mesh[*].element_length", mesh_factor),
+        Edit::scale("dynamic.time_step", dt_factor),
+        Edit::remove("dynamic.output_interval"),
+    ];
+    if scene
+        .lay
+        .as_ref()
+        .is_some_and(|l| l.element_length.is_some())
+    {
+        edits.push(Edit::scale("lay.element_length", mesh_factor));
+    }
+    let mut v = scene.edited(&edits, files)?;
     v.text = format!(
         "# catena convergence variant of {}: element lengths x{mesh_factor}, time step x{dt_factor},\n\
          # every step sampled (output_interval removed). Generated; edit the original instead.\n{}",
@@ -375,6 +388,9 @@ fn run_variant(
         .iter()
         .map(|e| e.l0)
         .fold(f64::INFINITY, f64::min);
+    if vscene.lay.is_some() {
+        return lay_variant(vscene, (mesh_factor, dt_factor), (elements, min_el));
+    }
     let t0 = Instant::now();
     let r = run::simulate(vscene, &mut [], RunOptions::default())?;
     let wall = t0.elapsed().as_secs_f64();
@@ -389,6 +405,44 @@ fn run_variant(
         elements,
         min_element_length: min_el,
         dt: r.spec.dt,
+        steps: r.steps,
+        newton_iterations: r.iterations,
+        step_cuts: r.cuts,
+        wall_seconds: wall,
+        values,
+        error: r.stop.clone(),
+        scene_text,
+    })
+}
+
+/// A lay's variant: the mean as-laid embedment (mm), the lay factor, the top tension's range (kN)
+/// and the sag bend's largest moment (kN·m).
+fn lay_variant(
+    vscene: RiserScene,
+    (mesh_factor, dt_factor): (f64, f64),
+    (elements, min_element_length): (usize, f64),
+) -> Result<VariantRun, AppError> {
+    let scene_text = vscene.text.clone();
+    let t0 = Instant::now();
+    let r = run::lay::simulate_lay(vscene, &mut |_| true)?;
+    let wall = t0.elapsed().as_secs_f64();
+    let s = &r.summary;
+    let values = if r.stop.is_none() {
+        vec![
+            s.as_laid_mean * 1e3,
+            s.lay_factor,
+            (s.top_tension_max - s.top_tension_min) * 1e-3,
+            s.sag_moment_max * 1e-3,
+        ]
+    } else {
+        vec![f64::NAN; 4]
+    };
+    Ok(VariantRun {
+        mesh_factor,
+        dt_factor,
+        elements,
+        min_element_length,
+        dt: r.dynamic.dt,
         steps: r.steps,
         newton_iterations: r.iterations,
         step_cuts: r.cuts,

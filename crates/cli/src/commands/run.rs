@@ -62,12 +62,8 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     warn(&scene);
     if scene.lay.is_some() {
         return super::lay::run_lay(scene, out, opts, restart.is_some());
-    } else if scene.dynamic.is_none() {
-        return Err(AppError::Run {
-            file: scene.file.clone(),
-            message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
-        });
     }
+    needs_dynamic(&scene)?;
     let (st, statics_seconds) = {
         let t = Instant::now();
         (statics::solve(scene)?, t.elapsed().as_secs_f64())
@@ -199,6 +195,17 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             })
         }
         _ => Ok(t),
+    }
+}
+
+/// `catena run` needs a `[dynamic]` table.
+fn needs_dynamic(scene: &catena::scene::riser::RiserScene) -> Result<(), AppError> {
+    match scene.dynamic {
+        Some(_) => Ok(()),
+        None => Err(AppError::Run {
+            file: scene.file.clone(),
+            message: "key `dynamic`: expected a [dynamic] table for `catena run` (use `catena static` for statics alone)".into(),
+        }),
     }
 }
 

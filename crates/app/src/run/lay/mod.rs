@@ -103,6 +103,8 @@ pub struct LayRun {
     pub cuts: u32,
     /// Times the window moved.
     pub windows: u64,
+    /// Times a node was taken back onto the tower (paid in).
+    pub taken_back: u64,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
     /// Why the lay ended early, if it did.
@@ -168,8 +170,8 @@ pub fn lay(
     on_step: &mut dyn FnMut(&LayProgress) -> bool,
 ) -> Result<LayRun, AppError> {
     let t0 = Instant::now();
-    let mut l = Lay::new(&st)?;
-    let stop = l.run(on_step)?;
+    let mut l = Lay::start(&st)?;
+    let stop = l.run_until(l.dspec.duration, on_step)?;
     l.finish();
     let summary = l.summary(&st);
     Ok(LayRun {
@@ -185,6 +187,7 @@ pub fn lay(
         iterations: l.iterations,
         cuts: l.cuts,
         windows: l.windows,
+        taken_back: l.taken_back,
         nodes: l.nodes,
         full: l.full,
         summary,
@@ -194,8 +197,9 @@ pub fn lay(
     })
 }
 
-/// The lay in progress: the Model of the whole pipe, the store, the window and the tower.
-struct Lay {
+/// The lay in progress: the Model of the whole pipe, the store, the window and the tower
+/// ([`lay`] runs one from the statics to the end; a benchmark steps one on).
+pub struct Lay {
     file: String,
     spec: LaySpec,
     dspec: DynamicSpec,
@@ -230,10 +234,12 @@ struct Lay {
     iterations: usize,
     cuts: u32,
     windows: u64,
+    taken_back: u64,
 }
 
 impl Lay {
-    fn new(st: &StaticRun) -> Result<Self, AppError> {
+    /// The lay at its start, from the statics of a lay scene (see [`statics_scene`]).
+    pub fn start(st: &StaticRun) -> Result<Self, AppError> {
         let scene = &st.scene;
         let file = scene.file.clone();
         let fail = |message: String| AppError::Run {
@@ -345,6 +351,7 @@ impl Lay {
             iterations: 0,
             cuts: 0,
             windows: 0,
+            taken_back: 0,
             full,
         };
         l.mark_positions();
@@ -403,15 +410,31 @@ impl Lay {
         self.spec.speed * catena_fe::motion::quintic_ramp(t, self.spec.ramp).0
     }
 
-    /// Steps to the end of the lay; the reason it stopped early, if it did.
-    fn run(
+    /// The time reached, s.
+    pub fn time(&self) -> f64 {
+        self.state.t
+    }
+
+    /// Pipe paid out, m.
+    pub fn paid_out(&self) -> f64 {
+        self.paid
+    }
+
+    /// Nodes in the solve.
+    pub fn window_nodes(&self) -> usize {
+        self.last - self.first + 1
+    }
+
+    /// Steps to `t_end` (or to the end of the lay, `[lay] length`); the reason it stopped early, if
+    /// it did.
+    pub fn run_until(
         &mut self,
+        t_end: f64,
         on_step: &mut dyn FnMut(&LayProgress) -> bool,
     ) -> Result<Option<Stop>, AppError> {
         let dt = self.dspec.dt;
         let duration = self.dspec.duration;
-        let total_steps = (duration / dt - 1e-9).ceil() as u64;
-        while self.state.step < total_steps {
+        while self.state.t < t_end - 1e-6 * dt {
             if self.spec.length.is_some_and(|len| self.paid >= len - 1e-9) {
                 break;
             }
@@ -526,6 +549,7 @@ impl Lay {
             let p = self.at(k);
             self.place_on_tower(k + 1, [p[0] - l * self.up[0], p[1] - l * self.up[1]], k);
             self.d_top -= l;
+            self.taken_back += 1;
             self.rewindow(k + 1, self.last)
         } else {
             Ok(())
