@@ -272,3 +272,31 @@ fn hard_lay_cases_stay_stable() {
     let surge = lay_case("hard-tension-violent-surge.toml");
     assert!(surge.taken_back > 0, "no pipe taken back onto the tower");
 }
+
+/// The lay-down (`cases/lay/laydown-12in.toml`, also the hard case of a lay-down touching the
+/// seabed): the last 100 m of pipe laid, then its end lowered on the A&R wire while the vessel keeps
+/// its speed, until the end rests on the seabed with 90 % of W'. The end is embedded (at least the
+/// self-weight embedment), the wire's tension at the tower falls below half the lay's as the end
+/// lands, and the sag bend is not over-bent (its largest moment within 5 % of the lay's).
+#[test]
+fn a_lay_down_lands_the_pipe_end() {
+    let r = lay_of(&case("laydown-12in.toml"));
+    let d = r.lay_down.expect("a lay-down");
+    let rested = d.rested.expect("the pipe's end rests");
+    let s = &r.summary;
+    let tension_end = *r.records.top_tension.last().expect("records");
+    println!(
+        "left the tower at {:.1} s, rested at {rested:.1} s, end embedded {:.4} m (self-weight {:.4} m); \
+         tension at the end {:.1} kN; sag moment {:.1} kN·m (statics {:.1})",
+        d.left_tower,
+        d.end_embedment,
+        s.self_weight_embedment,
+        tension_end / 1e3,
+        s.sag_moment_max / 1e3,
+        -r.statics.summary.max_sag_moment.0 / 1e3
+    );
+    assert!(rested > d.left_tower);
+    assert!(d.end_embedment >= s.self_weight_embedment);
+    assert!(tension_end < 0.5 * r.statics.summary.top_tension);
+    assert!(s.sag_moment_max < 1.05 * -r.statics.summary.max_sag_moment.0);
+}

@@ -539,6 +539,13 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "motion",
     ),
     (
+        "a lay-down without its wire",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[lay]\nlay_down = true\npipe_length = 500.0",
+        "lay.wire",
+    ),
+    (
         "a negative lay ramp",
         "lay/jlay-12in-steady",
         "[lay]",

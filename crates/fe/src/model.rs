@@ -525,19 +525,13 @@ impl LineModel {
         self
     }
 
-    /// The line with `n` more elements like its top one but of length `l0` above its top node:
-    /// a pipe continued beyond its top end (a lay's pipe still on the vessel,
-    /// [`LineModel::window`] takes the part in the water). The new nodes come first; the supports,
-    /// the seabed and the flexjoint (at the new top) stay. Attachments, zones' assignments and
-    /// per-node coefficients are not carried (a lay scene has none).
-    pub fn with_pipe_above(&self, n: usize, l0: f64) -> Self {
-        let top = Element {
-            l0,
-            ..self.elements[0]
-        };
-        let elements: Vec<Element> = std::iter::repeat_n(top, n)
-            .chain(self.elements.iter().copied())
-            .collect();
+    /// The line continued above its top node by the elements `above` (top first): a lay's pipe
+    /// still on the vessel, and the wire after it ([`LineModel::window`] takes the part in the
+    /// water). The new nodes come first; the supports, the seabed and the flexjoint (at the new top)
+    /// stay. Attachments, zones' assignments and per-node coefficients are not carried (a lay scene
+    /// has none).
+    pub fn with_elements_above(&self, above: &[Element]) -> Self {
+        let elements: Vec<Element> = above.iter().chain(self.elements.iter()).copied().collect();
         let mut m = Self::from_elements(elements, self.supports, self.seabed, self.flexjoint);
         m.seabed_zones = self.seabed_zones.clone();
         m.diameter_laws = self.diameter_laws.clone();

@@ -42,6 +42,12 @@ pub fn json(r: &LayRun) -> Value {
         "window_nodes_mean": num(mean(&r.records.window_nodes)),
         "nodes": r.full.nodes(),
         "wall_seconds": num(r.wall_seconds),
+        "lay_down": r.lay_down.map(|d| json!({
+            "pipe_end_left_tower_at": num(d.left_tower),
+            "kp_touchdown_then": num(d.kp_touchdown),
+            "rested_at": d.rested.map(num),
+            "end_embedment": num(d.end_embedment),
+        })),
     });
     js
 }
@@ -99,6 +105,21 @@ pub fn text(r: &LayRun) -> String {
         r.full.nodes(),
         r.wall_seconds
     );
+    if let Some(d) = &r.lay_down {
+        let _ = writeln!(
+            t,
+            "  lay-down: the pipe's end left the tower at {:.1} s (the touchdown at KP {:.1} m: the steady part ends there); {}",
+            d.left_tower,
+            d.kp_touchdown,
+            match d.rested {
+                Some(at) => format!(
+                    "it rested on the seabed at {at:.1} s, embedded {:.1} mm",
+                    mm(d.end_embedment)
+                ),
+                None => "it did not rest on the seabed before the run's end".into(),
+            }
+        );
+    }
     if let Some(stop) = &r.stop {
         let _ = writeln!(t, "  stopped: {stop}");
     }

@@ -7,7 +7,9 @@
 //! (`payout = "position"`) or by a tensioner that holds `target_tension` at the top
 //! (`payout = "tension"`: the payout rate follows `V + gain·(T − T_target)` with the time constant
 //! `time_constant`, limited to ±`max_payout_rate`).
-//! Every key is SI: m, s, N, N·m/rad; the tower angle in degrees from the vertical.
+//! With `lay_down = true`, the pipe's end is lowered to the seabed on the wire of `[lay.wire]` once it
+//! has left the tower, the vessel holding station. Every key is SI: m, s, N, N·m/rad; the tower angle
+//! in degrees from the vertical.
 
 use super::checks::positive;
 use super::invalid;
@@ -65,6 +67,30 @@ pub struct LaySpec {
     pub freeze_behind: f64,
     /// The vessel's speed rises from 0 to `speed` over this time (quintic), s.
     pub ramp: f64,
+    /// The lay-down at the end, if the scene asks for one: the wire the pipe's end is lowered on.
+    pub lay_down: Option<Wire>,
+}
+
+/// The abandonment and recovery wire of a lay-down (`[lay.wire]`), SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wire {
+    /// Its length, m.
+    pub length: f64,
+    /// Its diameter (hydrodynamic and contact), m.
+    pub od: f64,
+    /// Axial stiffness, N.
+    pub ea: f64,
+    /// Bending stiffness, N·m² (a wire's is small; it keeps the elements' kernel well posed).
+    pub ei: f64,
+    /// Submerged weight, N/m.
+    pub weight: f64,
+    /// Mass, kg/m.
+    pub mass: f64,
+    /// Element length, m.
+    pub element_length: f64,
+    /// Whether the vessel holds station while the wire is paid out (else it keeps the lay's speed,
+    /// as lay-downs are done: the sag bend keeps its tension).
+    pub station: bool,
 }
 
 /// Default `time_constant` of a tensioner, s.
@@ -136,33 +162,18 @@ pub(super) fn lay_spec(file: &str, raw: &RiserFile) -> Result<Option<LaySpec>, S
         ));
     }
     let in_water = raw.line.length;
-    let laid = match l.length {
-        Some(v) => positive(file, "lay.length", v, "a length of pipe to lay in m")?,
-        None => l.speed * d.duration,
-    };
-    let pipe_length = match l.pipe_length {
-        Some(v) => {
-            positive(file, "lay.pipe_length", v, "the whole pipe's length in m")?;
-            if v < in_water + laid {
-                return Err(invalid(
-                    file,
-                    "lay.pipe_length",
-                    format!(
-                        "a pipe at least as long as the line in the water ({in_water} m) plus the \
-                         lay ({laid:.1} m{}), got {v} m",
-                        if l.length.is_some() {
-                            ", lay.length"
-                        } else {
-                            ": lay.speed × dynamic.duration"
-                        }
-                    ),
-                ));
-            }
-            v
-        }
-        // Room for a tensioner that pays out faster than the vessel moves.
-        None => in_water + 1.5 * laid + 20.0,
-    };
+    let lay_down = lay_down(file, l)?;
+    if lay_down.is_some() && l.pipe_length.is_none_or(|v| v <= in_water) {
+        return Err(invalid(
+            file,
+            "lay.pipe_length",
+            format!(
+                "the whole pipe's length for a lay-down, longer than the line in the water \
+                 ({in_water} m): its end is what is lowered"
+            ),
+        ));
+    }
+    let pipe_length = pipe_length(file, l, (in_water, d.duration), lay_down.is_some())?;
     let tower_angle = match l.tower_angle_deg {
         Some(a) if (0.0..90.0).contains(&a) => Some(a.to_radians()),
         Some(a) => {
@@ -237,6 +248,87 @@ pub(super) fn lay_spec(file: &str, raw: &RiserFile) -> Result<Option<LaySpec>, S
         freeze_tolerance,
         freeze_behind,
         ramp,
+        lay_down,
+    }))
+}
+
+/// `pipe_length`, checked: at least the line in the water and the lay (not for a lay-down, which
+/// lays the whole pipe), or by default the line, 1.5 × the lay and 20 m.
+fn pipe_length(
+    file: &str,
+    l: &LayTable,
+    (in_water, duration): (f64, f64),
+    lay_down: bool,
+) -> Result<f64, SceneError> {
+    let laid = match l.length {
+        Some(v) => positive(file, "lay.length", v, "a length of pipe to lay in m")?,
+        None => l.speed * duration,
+    };
+    Ok(match l.pipe_length {
+        Some(v) => {
+            positive(file, "lay.pipe_length", v, "the whole pipe's length in m")?;
+            if v < in_water + laid && !lay_down {
+                return Err(invalid(
+                    file,
+                    "lay.pipe_length",
+                    format!(
+                        "a pipe at least as long as the line in the water ({in_water} m) plus the \
+                         lay ({laid:.1} m{}), got {v} m",
+                        if l.length.is_some() {
+                            ", lay.length"
+                        } else {
+                            ": lay.speed × dynamic.duration"
+                        }
+                    ),
+                ));
+            }
+            v
+        }
+        // Room for a tensioner that pays out faster than the vessel moves.
+        None => in_water + 1.5 * laid + 20.0,
+    })
+}
+
+/// `lay_down` and `[lay.wire]`, checked.
+fn lay_down(file: &str, l: &LayTable) -> Result<Option<Wire>, SceneError> {
+    let w = match (l.lay_down, &l.wire) {
+        (false, None) => return Ok(None),
+        (false, Some(_)) => {
+            return Err(invalid(
+                file,
+                "lay.lay_down",
+                "`lay_down = true` with a [lay.wire] (the wire is for the lay-down)",
+            ))
+        }
+        (true, None) => {
+            return Err(invalid(
+                file,
+                "lay.wire",
+                "a [lay.wire] table for the lay-down: the wire the pipe's end is lowered on \
+                 (length, od, ea, submerged_weight, mass)",
+            ))
+        }
+        (true, Some(w)) => w,
+    };
+    let p = |key: &str, v: f64, what: &str| positive(file, &format!("lay.wire.{key}"), v, what);
+    let ea = p("ea", w.ea, "an axial stiffness in N")?;
+    Ok(Some(Wire {
+        length: p("length", w.length, "a length in m")?,
+        od: p("od", w.od, "a diameter in m")?,
+        ea,
+        ei: p(
+            "ei",
+            w.ei.unwrap_or(1e-6 * ea),
+            "a bending stiffness in N·m²",
+        )?,
+        weight: p("submerged_weight", w.submerged_weight, "a weight in N/m")?,
+        mass: p("mass", w.mass, "a mass in kg/m")?,
+        element_length: p(
+            "element_length",
+            w.element_length.unwrap_or(1.0),
+            "an element length in m",
+        )?,
+        station: w.station,
     }))
 }
 

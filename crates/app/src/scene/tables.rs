@@ -494,6 +494,25 @@ pub struct LayTable {
     pub freeze_tolerance: Option<f64>,
     pub freeze_behind: Option<f64>,
     pub ramp: Option<f64>,
+    #[serde(default)]
+    pub lay_down: bool,
+    pub wire: Option<WireTable>,
+}
+
+/// `[lay.wire]`: the abandonment and recovery wire a lay-down lowers the pipe's end on.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct WireTable {
+    pub length: f64,
+    pub od: f64,
+    pub ea: f64,
+    pub ei: Option<f64>,
+    pub submerged_weight: f64,
+    pub mass: f64,
+    pub element_length: Option<f64>,
+    #[serde(default)]
+    pub station: bool,
 }
 
 /// A riser scene file as written.

@@ -120,9 +120,18 @@ impl LaidNodes {
         }
     }
 
-    /// Records node `g` as laid at `(x, z)` with its history.
+    /// Records node `g` as laid at `(x, z)` with its history: the penetration of the invert of the
+    /// pipe below the node (the node at the pipe's end, between the pipe and a lay-down's wire,
+    /// has the mean of their diameters for its contact; its as-laid embedment is the pipe's).
     pub fn lay(&mut self, full: &LineModel, g: usize, (x, z): (f64, f64), h: &SeabedHistory) {
-        self.as_laid[g] = full.penetration(g, x, z).unwrap_or(f64::NAN);
+        let d = full
+            .elements
+            .get(g)
+            .unwrap_or(&full.elements[g - 1])
+            .contact_od;
+        self.as_laid[g] = full
+            .penetration(g, x, z)
+            .map_or(f64::NAN, |p| p + 0.5 * (d - full.node_od[g]));
         self.laid_x[g] = x;
         if let SeabedHistory::RandolphQuiggin(r) = h {
             if r.contacted && r.wear.xi > 0.0 {

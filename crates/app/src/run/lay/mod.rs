@@ -45,20 +45,26 @@
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
 pub mod laid;
+mod mesh;
+mod result;
 pub mod window;
+
+use mesh::material_mesh;
+pub use mesh::statics_scene;
+pub use result::{LayDown, LayProgress, LayRun};
 
 use std::time::Instant;
 
 use catena_fe::assembly::{LineResults, Placement};
 use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel, StepError};
-use catena_fe::model::{FlexJoint, LineModel};
+use catena_fe::model::LineModel;
 use catena_fe::motion::TopMotion;
 use catena_seabed::law::Seabed;
 
 use crate::error::AppError;
 use crate::run::observe::Stop;
 use crate::run::statics::{self, StaticRun};
-use crate::scene::lay::{LaySpec, Payout, Tower};
+use crate::scene::lay::{LaySpec, Payout};
 use crate::scene::riser::{DynamicSpec, RiserScene};
 use laid::{backbone_penetration, stats, LaidNodes, LayRecords, LaySummary};
 use window::Store;
@@ -67,93 +73,6 @@ use window::Store;
 /// leaves out the top element's axial ringing at the time step's period, which the tensioner
 /// would otherwise feed back.
 pub const TENSION_FILTER: f64 = 1.0;
-
-/// A finished (or stopped) lay.
-#[derive(Debug)]
-pub struct LayRun {
-    /// The statics of the start.
-    pub statics: StaticRun,
-    /// The lay's table.
-    pub spec: LaySpec,
-    /// The dynamic table (time step, output interval, sea).
-    pub dynamic: DynamicSpec,
-    /// The whole pipe's mesh.
-    pub full: LineModel,
-    /// Nodes on the vessel at the start.
-    pub on_vessel: usize,
-    /// The tower's angle from the vertical, rad.
-    pub tower_angle: f64,
-    /// The tensioner's target, N (tension control).
-    pub target_tension: Option<f64>,
-    /// The records.
-    pub records: LayRecords,
-    /// Each material node.
-    pub nodes: LaidNodes,
-    /// The lay's numbers.
-    pub summary: LaySummary,
-    /// Every node's position `(x, z)` at the end (nodes still on the vessel: along the tower).
-    pub positions: Vec<[f64; 2]>,
-    /// The window at the end `(first, last)`.
-    pub window: (usize, usize),
-    /// Converged steps.
-    pub steps: u64,
-    /// Newton iterations.
-    pub iterations: usize,
-    /// Step cuts.
-    pub cuts: u32,
-    /// Times the window moved.
-    pub windows: u64,
-    /// Times a node was taken back onto the tower (paid in).
-    pub taken_back: u64,
-    /// Wall time of the dynamics, s.
-    pub wall_seconds: f64,
-    /// Why the lay ended early, if it did.
-    pub stop: Option<Stop>,
-}
-
-impl LayRun {
-    /// x of the tower's exit at the start, m.
-    pub fn positions_exit_x(&self) -> f64 {
-        self.statics.placement.base[0] + self.statics.u[0]
-    }
-}
-
-/// What the caller sees after each converged step (progress, interruption).
-#[derive(Debug, Clone, Copy)]
-pub struct LayProgress {
-    /// Time, s.
-    pub t: f64,
-    /// The run's duration, s.
-    pub duration: f64,
-    /// Pipe paid out, m.
-    pub paid_out: f64,
-    /// Nodes in the solve.
-    pub window_nodes: usize,
-}
-
-/// The scene's statics set up for the tower: a hinged tower's spring, or a clamped tower at a
-/// given angle (a spring 100 times the top element's own bending stiffness `EI/L`), as a
-/// flexjoint at the top whose neutral angle is the tower's (the static departure angle if none).
-pub fn statics_scene(mut scene: RiserScene) -> RiserScene {
-    let Some(lay) = scene.lay.clone() else {
-        return scene;
-    };
-    let top = scene.model.elements[0];
-    let stiffness = match (lay.tower, lay.tower_angle) {
-        (Tower::Hinged(k), _) => Some(k),
-        (Tower::Clamped, Some(_)) => Some(100.0 * top.section.ei / top.l0),
-        (Tower::Clamped, None) => None,
-    };
-    if let Some(stiffness) = stiffness {
-        scene.model.flexjoint = Some(FlexJoint {
-            node: 0,
-            stiffness,
-            neutral: 0.0,
-        });
-        scene.flexjoint_neutral_from_vertical = lay.tower_angle;
-    }
-    scene
-}
 
 /// The whole path: the statics of the start, then the lay.
 pub fn simulate_lay(
@@ -174,6 +93,12 @@ pub fn lay(
     let stop = l.run_until(l.dspec.duration, on_step)?;
     l.finish();
     let summary = l.summary(&st);
+    let lay_down = l.left_tower.map(|(t, kp)| LayDown {
+        left_tower: t,
+        kp_touchdown: kp,
+        rested: l.rested,
+        end_embedment: l.nodes.as_laid[l.pipe_end],
+    });
     Ok(LayRun {
         spec: l.spec.clone(),
         dynamic: l.dspec.clone(),
@@ -192,6 +117,7 @@ pub fn lay(
         full: l.full,
         summary,
         wall_seconds: t0.elapsed().as_secs_f64(),
+        lay_down,
         stop,
         statics: st,
     })
@@ -218,7 +144,6 @@ pub struct Lay {
     theta: f64,
     up: [f64; 2],
     exit0: [f64; 2],
-    ea: f64,
     eps: f64,
     d_top: f64,
     vessel_x: f64,
@@ -235,6 +160,12 @@ pub struct Lay {
     cuts: u32,
     windows: u64,
     taken_back: u64,
+    /// The pipe's last end's node (0 without a lay-down wire above it).
+    pipe_end: usize,
+    /// When the pipe's end left the tower, and the touchdown's KP then (a lay-down).
+    left_tower: Option<(f64, f64)>,
+    /// When the pipe's end came to rest on the seabed (the lay-down's end).
+    rested: Option<f64>,
 }
 
 impl Lay {
@@ -255,10 +186,7 @@ impl Lay {
             .clone()
             .ok_or_else(|| fail("key `dynamic`: expected a [dynamic] table".into()))?;
         let top = st.model.elements[0];
-        let h = spec.element_length.unwrap_or(top.l0);
-        let extra = spec.pipe_length - st.model.length();
-        let o = (extra / h).ceil().max(1.0) as usize;
-        let full = st.model.with_pipe_above(o, h);
+        let (full, o, pipe_end) = material_mesh(&st.model, &spec);
         let theta0 = st.placement.base[2] + st.u[2];
         // The static top's angle from the downward vertical (the line runs to −x from the top).
         let phi0 = theta0.cos().abs().atan2(-theta0.sin());
@@ -273,9 +201,8 @@ impl Lay {
             st.placement.base[0] + st.u[0],
             st.placement.base[1] + st.u[1],
         ];
-        let ea = top.section.ea;
         let tension = st.results.tension[0];
-        let eps = tension / ea;
+        let eps = tension / top.section.ea;
         // The base: the tower's nodes along the tower above the exit (each element stretched by
         // the top's strain), the line's where the statics' seed put them.
         let n = full.nodes();
@@ -295,7 +222,13 @@ impl Lay {
             |s| s.seabed.untouched(),
         );
         let (first, last) = (o - 1, n - 1);
-        let dm = window::model(&full, &base, (first, last), (spec.tower, theta), &dspec);
+        let dm = window::model(
+            &full,
+            &base,
+            (first, last),
+            (spec.tower, theta, first < pipe_end),
+            &dspec,
+        );
         let mut ws = DynWorkspace::new(&dm.line).map_err(|source| AppError::Solver {
             file: file.clone(),
             source,
@@ -338,7 +271,6 @@ impl Lay {
             theta,
             up,
             exit0,
-            ea,
             eps,
             vessel_x: 0.0,
             paid: 0.0,
@@ -352,6 +284,9 @@ impl Lay {
             cuts: 0,
             windows: 0,
             taken_back: 0,
+            pipe_end,
+            left_tower: None,
+            rested: None,
             full,
         };
         l.mark_positions();
@@ -387,6 +322,8 @@ impl Lay {
     /// by `dt/τ` of the difference, within ±`max_rate`.
     fn payout_rate(&self, dt: f64) -> f64 {
         match (self.spec.payout, self.target) {
+            // A lay-down lowers the pipe's end at the lay's speed, whatever the lay's control.
+            _ if self.left_tower.is_some() => self.speed_at(self.state.t + 0.5 * dt),
             (
                 Payout::Tension {
                     gain,
@@ -405,9 +342,21 @@ impl Lay {
         }
     }
 
-    /// The vessel's speed at `t`: `V` after the quintic ramp of `[lay] ramp`.
+    /// The lay's speed at `t`: `V` after the quintic ramp of `[lay] ramp`.
     fn speed_at(&self, t: f64) -> f64 {
         self.spec.speed * catena_fe::motion::quintic_ramp(t, self.spec.ramp).0
+    }
+
+    /// The vessel's speed at `t`: the lay's; in a lay-down with `[lay.wire] station = true`,
+    /// brought to rest over the ramp's time once the pipe's end has left the tower.
+    fn vessel_speed_at(&self, t: f64) -> f64 {
+        let v = self.speed_at(t);
+        match (self.left_tower, self.spec.lay_down) {
+            (Some((t0, _)), Some(w)) if w.station => {
+                v * (1.0 - catena_fe::motion::quintic_ramp(t - t0, self.spec.ramp).0)
+            }
+            _ => v,
+        }
     }
 
     /// The time reached, s.
@@ -457,8 +406,13 @@ impl Lay {
             self.nodes.observe(
                 self.first,
                 &self.res,
-                1e-3 * self.full.elements[0].contact_od,
+                1e-3 * self.full.elements[self.pipe_end].contact_od,
             );
+            if self.pipe_end_rests() {
+                self.rested = Some(self.state.t);
+                self.record();
+                break;
+            }
             if self.state.step % self.dspec.output_every as u64 == 0 {
                 self.record();
             }
@@ -479,7 +433,7 @@ impl Lay {
     /// One step of the lay: the top's motion for the step, the step, the payout.
     fn step(&mut self, dt: f64) -> Result<(), StepError> {
         let rate = self.payout_rate(dt);
-        let speed = self.speed_at(self.state.t + 0.5 * dt);
+        let speed = self.vessel_speed_at(self.state.t + 0.5 * dt);
         let s = rate * (1.0 + self.eps);
         let vel = [speed - s * self.up[0], -s * self.up[1]];
         let b = &self.dm.placement.base;
@@ -511,11 +465,21 @@ impl Lay {
         Ok(())
     }
 
+    /// Whether the lay-down is over: the pipe's end, off the tower, presses on the seabed with 90 %
+    /// of the pipe's submerged weight.
+    fn pipe_end_rests(&self) -> bool {
+        let w = self.full.elements[self.pipe_end].weight;
+        self.left_tower.is_some()
+            && self.pipe_end > self.first
+            && (self.pipe_end >= self.last
+                || self.res.seabed_force[self.pipe_end - self.first] >= 0.9 * w)
+    }
+
     /// The tension at the tower's exit: the top node's reaction less the submerged weight of the
     /// pipe between it and the exit, along the tower.
     fn exit_tension(&self) -> f64 {
         let w = self.full.elements[self.first].weight;
-        self.res.tension[0] - w * self.d_top.max(0.0) / (1.0 + self.eps) * self.phi.cos()
+        self.res.tension[0] - w * self.d_top.max(0.0) / (1.0 + self.eps) * self.up[1]
     }
 
     /// Moves the window when the top node has reached the exit (or risen an element above it).
@@ -535,9 +499,22 @@ impl Lay {
             self.store.keep(self.first, &self.state);
             let last = self.freeze();
             let k = self.first;
-            self.eps = self.tension / self.ea;
+            self.eps = self.tension / self.full.elements[k - 1].section.ea;
             let l = self.full.elements[k - 1].l0 * (1.0 + self.eps);
+            if k <= self.pipe_end && self.left_tower.is_none() && self.spec.lay_down.is_some() {
+                let kp = self
+                    .touchdown()
+                    .map_or(f64::NAN, |(_, a)| self.full.length() - a);
+                self.left_tower = Some((self.state.t, kp));
+            }
             let p = self.at(k);
+            if k - 1 < self.pipe_end {
+                // Over the sheave, the wire runs out along its own line, not the tower's.
+                let below = self.at(k + 1);
+                let (dx, dz) = (p[0] - below[0], p[1] - below[1]);
+                let len = dx.hypot(dz);
+                self.up = [dx / len, dz / len];
+            }
             self.place_on_tower(k - 1, [p[0] + l * self.up[0], p[1] + l * self.up[1]], k);
             self.d_top += l;
             self.rewindow(k - 1, last)
@@ -619,7 +596,7 @@ impl Lay {
             &self.full,
             &self.base,
             (first, last),
-            (self.spec.tower, self.theta),
+            (self.spec.tower, self.theta, first < self.pipe_end),
             &self.dspec,
         );
         let n = last - first + 1;
@@ -675,6 +652,15 @@ impl Lay {
     /// far enough behind the touchdown but were not frozen.
     fn finish(&mut self) {
         self.store.keep(self.first, &self.state);
+        if self.rested.is_some() {
+            // The lay-down's end: every node of the pipe in contact is at rest.
+            for g in self.pipe_end.max(self.first)..self.last {
+                if self.res.penetration[g - self.first] > 0.0 && self.nodes.as_laid[g].is_nan() {
+                    let h = self.store.history[g];
+                    self.nodes.lay(&self.full, g, self.at(g).into(), &h);
+                }
+            }
+        }
         let Some((i_td, _)) = catena_fe::statics::touchdown_point(&self.res.penetration) else {
             return;
         };
@@ -693,12 +679,18 @@ impl Lay {
     }
 
     fn summary(&self, st: &StaticRun) -> LaySummary {
-        let top = self.full.elements[0];
+        let top = self.full.elements[self.pipe_end];
         let w = top.weight;
         let d = top.contact_od;
         let law: Option<&Seabed> = self.full.seabed_law(self.on_vessel);
         let z = |p: f64| law.map_or(f64::NAN, |s| backbone_penetration(s, p, d));
-        let steady = |g: &usize| self.nodes.landed[*g] && self.nodes.as_laid[*g].is_finite();
+        // The steady part: laid during the lay, before a lay-down's touchdown.
+        let kp_down = self.left_tower.map_or(f64::INFINITY, |(_, kp)| kp);
+        let steady = |g: &usize| {
+            self.nodes.landed[*g]
+                && self.nodes.as_laid[*g].is_finite()
+                && self.nodes.kp[*g] <= kp_down
+        };
         let n = self.full.nodes();
         let (mean, lo, hi, count) = stats((0..n).filter(steady).map(|g| self.nodes.as_laid[g]));
         let lay_factor = (0..n)

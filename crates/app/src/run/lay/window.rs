@@ -44,15 +44,17 @@ pub struct Store {
     pub stride: usize,
 }
 
-/// The Model of the window `first..=last` of the material mesh.
+/// The Model of the window `first..=last` of the material mesh; `over_sheave`: its top node is
+/// the lay-down's wire, which runs over a sheave (pinned: it takes no moment).
 pub fn model(
     full: &LineModel,
     base: &Placement,
     (first, last): (usize, usize),
-    (tower, tower_theta): (Tower, f64),
+    (tower, tower_theta, over_sheave): (Tower, f64, bool),
     spec: &DynamicSpec,
 ) -> DynamicModel {
     let (support, flexjoint) = match tower {
+        _ if over_sheave => (Support::Pinned, None),
         Tower::Clamped => (Support::Fixed, None),
         Tower::Hinged(stiffness) => (
             Support::Pinned,

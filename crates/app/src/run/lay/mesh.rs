@@ -1,0 +1,65 @@
+//! The lay's start: the scene's statics set up for the tower, and the whole pipe's mesh.
+
+use catena_fe::beam::Section;
+use catena_fe::model::{Element, FlexJoint, LineModel};
+
+use crate::scene::lay::{LaySpec, Tower};
+use crate::scene::riser::RiserScene;
+
+/// The scene's statics set up for the tower: a hinged tower's spring, or a clamped tower at a
+/// given angle (a spring 100 times the top element's own bending stiffness `EI/L`), as a
+/// flexjoint at the top whose neutral angle is the tower's (the static departure angle if none).
+pub fn statics_scene(mut scene: RiserScene) -> RiserScene {
+    let Some(lay) = scene.lay.clone() else {
+        return scene;
+    };
+    let top = scene.model.elements[0];
+    let stiffness = match (lay.tower, lay.tower_angle) {
+        (Tower::Hinged(k), _) => Some(k),
+        (Tower::Clamped, Some(_)) => Some(100.0 * top.section.ei / top.l0),
+        (Tower::Clamped, None) => None,
+    };
+    if let Some(stiffness) = stiffness {
+        scene.model.flexjoint = Some(FlexJoint {
+            node: 0,
+            stiffness,
+            neutral: 0.0,
+        });
+        scene.flexjoint_neutral_from_vertical = lay.tower_angle;
+    }
+    scene
+}
+
+/// The whole pipe's mesh: the scene's line with the pipe on the vessel above it (elements of
+/// `[lay] element_length`, the line's top element's otherwise, dividing the pipe exactly) and, for a
+/// lay-down, the wire above that; how many nodes are above the line, and the pipe's last end's node.
+pub(super) fn material_mesh(line: &LineModel, spec: &LaySpec) -> (LineModel, usize, usize) {
+    let top = line.elements[0];
+    let h = spec.element_length.unwrap_or(top.l0);
+    let extra = spec.pipe_length - line.length();
+    let n = (extra / h).ceil().max(1.0) as usize;
+    let pipe = Element {
+        l0: extra / n as f64,
+        ..top
+    };
+    let mut above = Vec::new();
+    if let Some(w) = spec.lay_down {
+        let nw = (w.length / w.element_length).ceil().max(1.0) as usize;
+        let wire = Element {
+            l0: w.length / nw as f64,
+            section: Section { ea: w.ea, ei: w.ei },
+            weight: w.weight,
+            mass: w.mass,
+            od: w.od,
+            hydro_od: w.od,
+            contact_od: w.od,
+            coefficients: None,
+            kind: top.kind,
+            wall: None,
+        };
+        above.extend(std::iter::repeat_n(wire, nw));
+    }
+    let pipe_end = above.len();
+    above.extend(std::iter::repeat_n(pipe, n));
+    (line.with_elements_above(&above), above.len(), pipe_end)
+}
