@@ -361,3 +361,19 @@ def test_every_group_of_results_h5_opens_in_xarray(tmp_path):
         moment = d["bending_moment"].sel(time=slice(10.0, None))
         assert float(r["bending_moment_max"].max()) == pytest.approx(float(moment.max()), rel=0.05)
         assert r["bending_moment_min"].dims == ("arc",)
+
+
+def test_a_lay_s_results_h5_opens_in_xarray(tmp_path):
+    """A lay's results.h5 (`catena run` on a scene with [lay]) opens in xarray: `/lay` with its
+    records on `time` and every point of the pipe on `kp`, and the steady lay's as-laid embedment
+    read from it is the summary's."""
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    out = tmp_path / "out"
+    cli("run", ROOT / "cases" / "lay" / "jlay-12in-steady.toml", "--quiet", "--out", out)
+    with xr.open_dataset(out / "results.h5", engine="h5netcdf", group="lay") as ds:
+        assert set(ds.sizes) == {"time", "kp"}, dict(ds.sizes)
+        assert {"time", "kp"} <= set(ds.coords)
+        steady = ds.as_laid_embedment.where(ds.landed_during_lay == 1)
+        summary = json.loads((out / "summary.json").read_text())["lay"]
+        assert abs(float(steady.mean()) - summary["as_laid_embedment"]["mean"]) < 1e-12

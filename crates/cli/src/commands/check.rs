@@ -130,7 +130,9 @@ fn describe_scene(
                 "  runs: statics, then {} steps of {} s ({} s), {} records",
                 size.steps, d.dt, d.duration, size.records
             );
-            if d.motion.is_none() && d.vessel.is_none() && d.environment.waves.is_none() {
+            if let Some(l) = &scene.lay {
+                let _ = writeln!(t, "  {}", lay_line(l));
+            } else if d.motion.is_none() && d.vessel.is_none() && d.environment.waves.is_none() {
                 warnings.push("nothing moves the line: no [motion], [vessel] or [waves]".into());
             }
         }
@@ -146,6 +148,35 @@ fn describe_scene(
         size.output_bytes / 1e6
     );
     seconds
+}
+
+/// What a `[lay]` does, in a line.
+fn lay_line(l: &catena::scene::lay::LaySpec) -> String {
+    use catena::scene::lay::{Payout, Tower};
+    format!(
+        "a J-lay: the vessel at {} m/s along +x, {}; a {} tower{}; {} m of pipe{}{}",
+        l.speed,
+        match l.payout {
+            Payout::Position => "the pipe paid out at its speed".to_string(),
+            Payout::Tension { .. } => "the pipe paid out by a tensioner".to_string(),
+        },
+        match l.tower {
+            Tower::Clamped => "clamped",
+            Tower::Hinged(_) => "hinged",
+        },
+        l.tower_angle.map_or(String::new(), |a| format!(
+            " at {:.1}° from the vertical",
+            a.to_degrees()
+        )),
+        l.pipe_length,
+        l.length
+            .map_or(String::new(), |len| format!(", {len} m of it laid")),
+        if l.lay_down.is_some() {
+            ", its end lowered on a wire to the seabed"
+        } else {
+            ""
+        }
+    )
 }
 
 /// `catena check CASE`: reads and checks a scene, a fatigue study, a sweep plan or a soil test

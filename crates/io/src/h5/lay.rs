@@ -26,7 +26,7 @@ pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppErr
         (
             "vessel_x",
             &rec.vessel_x,
-            "m (travel along +x since the start)",
+            "m (travel along +x from the start)",
         ),
         ("top_tension", &rec.top_tension, "N"),
         ("payout_rate", &rec.payout_rate, "m/s"),
