@@ -300,3 +300,51 @@ fn a_lay_down_lands_the_pipe_end() {
     assert!(tension_end < 0.5 * r.statics.summary.top_tension);
     assert!(s.sag_moment_max < 1.05 * -r.statics.summary.max_sag_moment.0);
 }
+
+/// The installation check (`[design_check] code = "dnv-st-f101"`) in a calm steady lay: the
+/// environmental load effects are nil, so the largest load-controlled utilisation of the free span
+/// is the statics' own, `M_d = γ_F·M`, `T_ed = γ_F·T` at the node where F101's criterion is largest
+/// (within 1 %); it lies in the sag bend; the strain criterion is reported with its resistance.
+#[test]
+fn the_installation_check_in_a_calm_lay_is_the_statics_check() {
+    let text = case("jlay-12in-steady.toml").replace(
+        "[lay]",
+        "[design_check]\ncode = \"dnv-st-f101\"\nsmys = 450.0e6\nsmts = 535.0e6\nsafety_class = \"low\"\n\n[lay]",
+    );
+    let r = lay_of(&text);
+    let c = r.installation.as_ref().expect("the installation check");
+    let st = &r.statics;
+    let spec = st
+        .scene
+        .dynamic
+        .as_ref()
+        .and_then(|d| d.design_check)
+        .expect("spec");
+    let res = catena::checks::design::Resistance::new(&spec, 0.3239, 0.0206);
+    let (rho, g, depth) = (1025.0, 9.81, 140.0);
+    let (mut best, mut at) = (0.0f64, 0.0);
+    for i in 0..st.results.moment.len() {
+        if st.results.penetration[i] > 0.0 {
+            break;
+        }
+        let p_e = rho * g * (depth - st.results.z[i]);
+        let u = res
+            .f101(
+                0.0,
+                p_e,
+                1.1 * st.results.moment[i],
+                1.1 * st.results.tension[i],
+            )
+            .value;
+        if u > best {
+            (best, at) = (u, st.model.arc[i]);
+        }
+    }
+    println!(
+        "lay: LCC {:.4} at {:.1} m from the exit; statics: {best:.4} at {at:.1} m; DCC {:.4} (strain {:.3e} against {:.3e})",
+        c.lcc_max.0, c.lcc_max.3, c.dcc_max.0, c.dcc_max.1, c.strain_resistance
+    );
+    assert!((c.lcc_max.0 / best - 1.0).abs() < 0.01);
+    assert!((c.lcc_max.3 - at).abs() < 5.0);
+    assert!(c.dcc_max.0 > 0.0 && c.dcc_max.0 < 1.0 && c.strain_resistance > 0.0);
+}

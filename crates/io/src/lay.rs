@@ -42,6 +42,18 @@ pub fn json(r: &LayRun) -> Value {
         "window_nodes_mean": num(mean(&r.records.window_nodes)),
         "nodes": r.full.nodes(),
         "wall_seconds": num(r.wall_seconds),
+        "installation_check": r.installation.as_ref().map(|c| json!({
+            "code": c.spec.code.name(),
+            "lcc_max": num(c.lcc_max.0),
+            "lcc_max_time": num(c.lcc_max.1),
+            "lcc_max_kp": num(c.lcc_max.2),
+            "lcc_max_arc_from_exit": num(c.lcc_max.3),
+            "dcc_max": num(c.dcc_max.0),
+            "dcc_max_strain": num(c.dcc_max.1),
+            "dcc_max_time": num(c.dcc_max.2),
+            "dcc_max_kp": num(c.dcc_max.3),
+            "strain_resistance": num(c.strain_resistance),
+        })),
         "lay_down": r.lay_down.map(|d| json!({
             "pipe_end_left_tower_at": num(d.left_tower),
             "kp_touchdown_then": num(d.kp_touchdown),
@@ -105,6 +117,20 @@ pub fn text(r: &LayRun) -> String {
         r.full.nodes(),
         r.wall_seconds
     );
+    if let Some(c) = &r.installation {
+        let _ = writeln!(
+            t,
+            "  installation check ({}): load-controlled {:.3} (at {:.1} m from the exit, KP {:.1} m, t = {:.1} s); sag bend strain {:.3e} against {:.3e}: displacement-controlled {:.3}",
+            c.spec.code.name(),
+            c.lcc_max.0,
+            c.lcc_max.3,
+            c.lcc_max.2,
+            c.lcc_max.1,
+            c.dcc_max.1,
+            c.strain_resistance,
+            c.dcc_max.0
+        );
+    }
     if let Some(d) = &r.lay_down {
         let _ = writeln!(
             t,

@@ -43,6 +43,28 @@
 //! with `p_min = p_ld` (the local internal pressure: the contents column and the design pressure;
 //! an emptied riser is a case with `internal_pressure` and the contents set accordingly).
 //!
+//! **DNV-ST-F101** (Submarine pipeline systems, 2021, §5.4.6–5.4.7), the pipe during
+//! installation. Load-controlled combined loading (LCC), with the same `M_k = α_c·M_p`,
+//! `T_k = α_c·S_p` and `p_b`, `p_c` as above, `γ = γ_SC·γ_m`:
+//!
+//! ```text
+//! internal overpressure:  { γ|M_d|/(α_c M_p) + (γ T_ed/(α_c S_p))² }² + (α_p (p_i − p_e)/(α_c p_b))² ≤ 1
+//! external overpressure:  { γ|M_d|/(α_c M_p) + (γ T_ed/(α_c S_p))² }² + (γ (p_e − p_min)/p_c)² ≤ 1
+//! α_p = 1 − β_p                     (p_i − p_e)/p_b < 2/3
+//!     = 1 − 3β_p(1 − (p_i − p_e)/p_b)   otherwise;   β_p = 0.5, (60 − D/t2)/90, 0 (D/t2 < 15, ≤ 60, > 60)
+//! M_d = γ_F γ_C M_F + γ_E M_E,   T_ed = γ_F γ_C T_F + γ_E T_E
+//! ```
+//!
+//! Where it differs from F201: the tension term is `(γ T/T_k)²` (F201: `γ (T/T_k)²`, the safety
+//! factor outside the square), the internal overpressure's pressure term is `α_p Δp/(α_c p_b)` with
+//! no safety factor and the bending term no `√(1 − (Δp/p_b)²)` (F201: `γ Δp/p_b` and the root), and
+//! the condition factor γ_C (default 1) multiplies the functional load effects. With external
+//! overpressure (an empty pipe being laid) the two differ only in the tension term and γ_C.
+//! Displacement-controlled (DCC, the sag bend's strain): `ε_Rd = ε_c/γ_ε`, `ε_c = 0.78 (t/D − 0.01)
+//! (1 + 5σ_h/f_y) α_h^−1.5` (girth weld factor 1), `σ_h = (p_min − p_e)(D − t)/(2t)`, γ_ε 2.0, 2.5,
+//! 3.3 for the low, normal and high safety classes; with external overpressure the utilisation is
+//! `(ε/ε_Rd)^0.8 + (p_e − p_min)/(p_c/(γ_m γ_SC))`.
+//!
 //! **API STD 2RD** (Dynamic Risers for Floating Production Systems, 2013, §5.2; the stress criteria
 //! of API RP 2RD, 1998): the von Mises stress of the three principal stresses in the wall (wall
 //! `t = t_nom − t_corr`, the outer diameter kept),
@@ -71,6 +93,9 @@ use crate::checks::fatigue::stress::PipeSection;
 pub enum Code {
     /// DNV-ST-F201 LRFD combined loading.
     DnvStF201,
+    /// DNV-ST-F101 load-controlled combined loading (and, in a lay, the displacement-controlled
+    /// strain criterion).
+    DnvStF101,
     /// API STD 2RD von Mises.
     ApiStd2rd,
 }
@@ -80,6 +105,7 @@ impl Code {
     pub fn name(self) -> &'static str {
         match self {
             Code::DnvStF201 => "dnv-st-f201",
+            Code::DnvStF101 => "dnv-st-f101",
             Code::ApiStd2rd => "api-std-2rd",
         }
     }
@@ -171,6 +197,37 @@ pub struct DesignSpec {
     pub poisson: f64,
     /// API: the design factor `C` on SMYS.
     pub design_factor: f64,
+    /// DNV-ST-F101: the condition load effect factor γ_C (on the functional load effects).
+    #[serde(default = "one")]
+    pub gamma_c: f64,
+    /// DNV-ST-F101: the strain resistance factor γ_ε of the displacement-controlled criterion.
+    #[serde(default = "strain_factor_normal")]
+    pub gamma_eps: f64,
+    /// DNV-ST-F101: the largest ratio of yield to tensile strength α_h.
+    #[serde(default = "alpha_h")]
+    pub alpha_h: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn strain_factor_normal() -> f64 {
+    2.5
+}
+
+fn alpha_h() -> f64 {
+    0.92
+}
+
+/// The strain resistance factor γ_ε of DNV-ST-F101 for a safety class (`normal` is `medium`).
+pub fn strain_resistance_factor(class: &str) -> Option<f64> {
+    match class {
+        "low" => Some(2.0),
+        "normal" | "medium" => Some(2.5),
+        "high" => Some(3.3),
+        _ => None,
+    }
 }
 
 /// The safety class factor γ_SC of DNV-ST-F201 for a class name (`normal` is `medium`).
@@ -245,6 +302,12 @@ pub struct Resistance {
     inertia: f64,
     /// API: `C·SMYS`.
     allowable: f64,
+    /// DNV-ST-F101: β of the pressure factor α_p (0.5, `(60 − D/t)/90` or 0).
+    beta_p: f64,
+    /// DNV-ST-F101: `f_y`, `t/D`, and the strain criterion's `α_h^−1.5/γ_ε`.
+    fy: f64,
+    t_over_d: f64,
+    strain_factor: f64,
 }
 
 impl Resistance {
@@ -275,6 +338,76 @@ impl Resistance {
             area: pi / 4.0 * (od * od - di * di),
             inertia: pi / 64.0 * (od.powi(4) - di.powi(4)),
             allowable: spec.design_factor * spec.smys,
+            beta_p: if dt < 15.0 {
+                0.5
+            } else if dt <= 60.0 {
+                (60.0 - dt) / 90.0
+            } else {
+                0.0
+            },
+            fy,
+            t_over_d: t / od,
+            strain_factor: spec.alpha_h.powf(-1.5) / spec.gamma_eps,
+        }
+    }
+
+    /// The DNV-ST-F101 load-controlled combined-loading utilisation at the pressures `p_ld`
+    /// (the internal pressure, also `p_min`), `p_e` (Pa) for the design moment `md` (N·m) and
+    /// effective tension `ted` (N) (see the module docs).
+    #[inline]
+    pub fn f101(&self, p_ld: f64, p_e: f64, md: f64, ted: f64) -> Utilisation {
+        let dp = p_ld - p_e;
+        let r = dp / self.pb;
+        let qh = if dp > 0.0 {
+            r * (2.0 / 3f64.sqrt())
+        } else {
+            0.0
+        };
+        let beta = (0.4 + qh) * self.beta_factor;
+        let alpha_c = (1.0 - beta) + beta * self.fu_over_fy;
+        let g = self.gamma;
+        let bending = g * md.abs() / (alpha_c * self.mk_unit);
+        let tension = (g * ted / (alpha_c * self.tk_unit)).powi(2);
+        let pressure = if dp >= 0.0 {
+            let alpha_p = if r < 2.0 / 3.0 {
+                1.0 - self.beta_p
+            } else {
+                1.0 - 3.0 * self.beta_p * (1.0 - r)
+            };
+            alpha_p * r / alpha_c
+        } else {
+            g * (-dp) / self.pc
+        };
+        let value = (bending + tension).powi(2) + pressure.powi(2);
+        let term = if bending >= tension && bending >= pressure {
+            Term::Bending
+        } else if tension >= pressure {
+            Term::Tension
+        } else {
+            Term::Pressure
+        };
+        Utilisation { value, term }
+    }
+
+    /// DNV-ST-F101's design compressive strain resistance `ε_c/γ_ε` at the pressures `p_ld`
+    /// (`p_min`) and `p_e` (Pa): `ε_c = 0.78·(t/D − 0.01)·(1 + 5σ_h/f_y)·α_h^−1.5` (girth weld
+    /// factor 1), `σ_h = (p_min − p_e)·(D − t)/(2t)`.
+    #[inline]
+    pub fn f101_strain_resistance(&self, p_ld: f64, p_e: f64) -> f64 {
+        let sh = (p_ld - p_e) * (self.od - self.t) / (2.0 * self.t);
+        0.78 * (self.t_over_d - 0.01) * (1.0 + 5.0 * sh / self.fy) * self.strain_factor
+    }
+
+    /// DNV-ST-F101's displacement-controlled utilisation for the design strain `strain` at the
+    /// pressures `p_ld`, `p_e` (Pa): `ε/ε_Rd` with internal overpressure; with external
+    /// overpressure `(ε/ε_Rd)^0.8 + (p_e − p_min)/(p_c/(γ_m γ_SC))`.
+    #[inline]
+    pub fn f101_strain(&self, strain: f64, p_ld: f64, p_e: f64) -> f64 {
+        let ratio = strain.abs() / self.f101_strain_resistance(p_ld, p_e);
+        if p_ld >= p_e {
+            ratio
+        } else {
+            ratio.powf(0.8) + (p_e - p_ld) * self.gamma / self.pc
         }
     }
 
@@ -418,6 +551,11 @@ impl Evaluator {
                 let (gf, ge) = (self.spec.gamma_f, self.spec.gamma_e);
                 r.dnv(p_ld, p_e, gf * mf + ge * (m - mf), gf * tf + ge * (te - tf))
             }
+            Code::DnvStF101 => {
+                let (mf, tf) = (self.static_moment[i], self.static_tension[i]);
+                let (gf, ge) = (self.spec.gamma_f * self.spec.gamma_c, self.spec.gamma_e);
+                r.f101(p_ld, p_e, gf * mf + ge * (m - mf), gf * tf + ge * (te - tf))
+            }
             Code::ApiStd2rd => r.api(p_ld, p_e, te + s.wall_minus_effective(z), m),
         }
     }
@@ -452,11 +590,72 @@ mod tests {
             youngs_modulus: 207e9,
             poisson: 0.3,
             design_factor: 0.8,
+            gamma_c: 1.0,
+            gamma_eps: 2.5,
+            alpha_h: 0.92,
         }
     }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a / b - 1.0).abs() < tol
+    }
+
+    /// DNV-ST-F101's combined loading, written out by hand for the 12-inch pipe of `cases/lay/`
+    /// (D 323.9 mm, t 20.6 mm, X65: SMYS 450 MPa, SMTS 535 MPa, α_U 0.96) empty at 140 m (external
+    /// overpressure) and with 20 MPa inside (internal overpressure), at M_d = 500 kN·m and
+    /// T_ed = 300 kN; and the strain criterion at ε = 0.2 %. The two codes differ where the module
+    /// docs say: F201's tension term keeps γ outside the square.
+    #[test]
+    fn f101_combined_loading_and_strain_by_hand() {
+        let mut s = spec(Code::DnvStF101);
+        (s.smys, s.smts, s.internal_pressure) = (450e6, 535e6, 0.0);
+        let (d, t) = (0.3239, 0.0206);
+        let r = Resistance::new(&s, d, t);
+        let (fy, fu) = (450e6 * 0.96, 535e6 * 0.96);
+        let g = 1.14 * 1.15;
+        let (md, ted) = (500e3, 300e3);
+        let mp = fy * (d - t) * (d - t) * t;
+        let sp = fy * std::f64::consts::PI * (d - t) * t;
+        let pb = 2.0 / 3f64.sqrt() * 2.0 * t / (d - t) * fy.min(fu / 1.15);
+        // External overpressure: q_h = 0, β = 0.4·(60 − D/t)/45.
+        let pe = 1025.0 * 9.81 * 140.0;
+        let beta = 0.4 * (60.0 - d / t) / 45.0;
+        let ac = 1.0 - beta + beta * fu / fy;
+        let pc = collapse(&s, d, t);
+        let by_hand =
+            (g * md / (ac * mp) + (g * ted / (ac * sp)).powi(2)).powi(2) + (g * pe / pc).powi(2);
+        let u = r.f101(0.0, pe, md, ted);
+        assert!(
+            close(u.value, by_hand, 1e-12),
+            "{} against {by_hand}",
+            u.value
+        );
+        assert_eq!(u.term, Term::Bending);
+        // F201 at the same loads: γ outside the tension term's square.
+        let f201 =
+            (g * (md / (ac * mp) + (ted / (ac * sp)).powi(2))).powi(2) + (g * pe / pc).powi(2);
+        assert!(close(r.dnv(0.0, pe, md, ted).value, f201, 1e-12));
+        assert!(u.value > f201);
+        // Internal overpressure, 20 MPa: q_h, α_c, and α_p with β_p = (60 − D/t)/90.
+        let pi = 20e6;
+        let ratio = (pi - pe) / pb;
+        let qh = ratio * 2.0 / 3f64.sqrt();
+        let beta = (0.4 + qh) * (60.0 - d / t) / 45.0;
+        let ac = 1.0 - beta + beta * fu / fy;
+        let beta_p = (60.0 - d / t) / 90.0;
+        let ap = if ratio < 2.0 / 3.0 {
+            1.0 - beta_p
+        } else {
+            1.0 - 3.0 * beta_p * (1.0 - ratio)
+        };
+        let by_hand = (g * md / (ac * mp) + (g * ted / (ac * sp)).powi(2)).powi(2)
+            + (ap * ratio / ac).powi(2);
+        assert!(close(r.f101(pi, pe, md, ted).value, by_hand, 1e-12));
+        // The strain criterion, empty: ε_c = 0.78 (t/D − 0.01)(1 + 5σ_h/f_y) α_h^−1.5, γ_ε 2.5.
+        let sh = -pe * (d - t) / (2.0 * t);
+        let eps_rd = 0.78 * (t / d - 0.01) * (1.0 + 5.0 * sh / fy) * 0.92f64.powf(-1.5) / 2.5;
+        let by_hand = (0.002 / eps_rd).powf(0.8) + pe * g / pc;
+        assert!(close(r.f101_strain(0.002, 0.0, pe), by_hand, 1e-12));
     }
 
     /// DNV-ST-F201, internal overpressure, worked by hand for one node of the paper's pipe

@@ -103,11 +103,10 @@ pub const RAMP: f64 = 20.0;
 pub const FREEZE_TOLERANCE: f64 = 1e-3;
 
 /// The tables a lay run does not take (yet): each would need the line of a fixed length.
-const NOT_WITH_LAY: [&str; 8] = [
+const NOT_WITH_LAY: [&str; 7] = [
     "motion",
     "flexjoint",
     "fatigue",
-    "design_check",
     "extremes",
     "gauge",
     "attachment",
@@ -128,21 +127,34 @@ pub(super) fn lay_spec(file: &str, raw: &RiserFile) -> Result<Option<LaySpec>, S
         (raw.motion.is_some(), NOT_WITH_LAY[0]),
         (raw.flexjoint.is_some(), NOT_WITH_LAY[1]),
         (raw.fatigue.is_some(), NOT_WITH_LAY[2]),
-        (raw.design_check.is_some(), NOT_WITH_LAY[3]),
-        (raw.extremes.is_some(), NOT_WITH_LAY[4]),
-        (!raw.gauge.is_empty(), NOT_WITH_LAY[5]),
-        (!raw.attachment.is_empty(), NOT_WITH_LAY[6]),
-        (!raw.section.is_empty(), NOT_WITH_LAY[7]),
+        (raw.extremes.is_some(), NOT_WITH_LAY[3]),
+        (!raw.gauge.is_empty(), NOT_WITH_LAY[4]),
+        (!raw.attachment.is_empty(), NOT_WITH_LAY[5]),
+        (!raw.section.is_empty(), NOT_WITH_LAY[6]),
     ] {
         if present {
             return Err(invalid(
                 file,
                 key,
                 "no such table in a scene with [lay] (the lay moves the top itself and holds the \
-                 angle with `lay.tower`; the checks, gauges, bodies and sections of a line of fixed \
-                 length are not taken by a lay run)",
+                 angle with `lay.tower`; fatigue, extremes, gauges, bodies and sections of a line \
+                 of fixed length are not taken by a lay run)",
             ));
         }
+    }
+    if let Some(c) = raw
+        .design_check
+        .as_ref()
+        .filter(|c| c.code != "dnv-st-f101")
+    {
+        return Err(invalid(
+            file,
+            "design_check.code",
+            format!(
+                "\"dnv-st-f101\" in a scene with [lay] (the installation check), got \"{}\"",
+                c.code
+            ),
+        ));
     }
     if raw.seabed.as_ref().is_some_and(|s| !s.zone.is_empty()) {
         return Err(invalid(

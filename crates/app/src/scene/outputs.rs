@@ -4,7 +4,7 @@
 use super::checks::{positive, Site};
 use super::invalid;
 use super::tables::*;
-use crate::checks::design::{safety_class_factor, Code, DesignSpec};
+use crate::checks::design::{safety_class_factor, strain_resistance_factor, Code, DesignSpec};
 use crate::checks::extremes::{Channel, ExtremesSpec, Settings, Source, Tail};
 use crate::checks::fatigue::sn::SnCurve;
 use crate::checks::fatigue::stress::{Fibre, PipeSection};
@@ -172,12 +172,13 @@ pub(super) fn design_check_of(
 ) -> Result<DesignSpec, SceneError> {
     let code = match t.code.as_str() {
         "dnv-st-f201" => Code::DnvStF201,
+        "dnv-st-f101" => Code::DnvStF101,
         "api-std-2rd" => Code::ApiStd2rd,
         other => {
             return Err(invalid(
                 file,
                 "design_check.code",
-                format!("\"dnv-st-f201\" or \"api-std-2rd\", got \"{other}\""),
+                format!("\"dnv-st-f201\", \"dnv-st-f101\" or \"api-std-2rd\", got \"{other}\""),
             ))
         }
     };
@@ -268,8 +269,29 @@ pub(super) fn design_check_of(
             "a time in [0, duration) s",
         ));
     }
+    let gamma_c = factor(
+        "condition_factor",
+        t.condition_factor,
+        1.0,
+        "a condition factor",
+    )?;
+    let gamma_eps = factor(
+        "strain_factor",
+        t.strain_factor,
+        strain_resistance_factor(class).unwrap_or(2.5),
+        "a strain resistance factor",
+    )?;
+    let alpha_h = factor(
+        "yield_to_tensile_max",
+        t.yield_to_tensile_max,
+        0.92,
+        "a yield to tensile strength ratio",
+    )?;
     Ok(DesignSpec {
         code,
+        gamma_c,
+        gamma_eps,
+        alpha_h,
         smys: t.smys,
         smts: t.smts,
         internal_pressure: t.internal_pressure,

@@ -373,6 +373,9 @@ pub struct DesignCheckTable {
     pub fabrication_factor: Option<f64>,
     pub ovality: Option<f64>,
     pub youngs_modulus: Option<f64>,
+    pub condition_factor: Option<f64>,
+    pub strain_factor: Option<f64>,
+    pub yield_to_tensile_max: Option<f64>,
 }
 
 /// `[design_check] load_factors`.

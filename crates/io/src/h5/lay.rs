@@ -74,6 +74,18 @@ pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppErr
     for (name, data, units) in per_node {
         vector(&g, name, data, units).map_err(&err)?;
     }
+    let mut extra: Vec<&str> = Vec::new();
+    if let Some(c) = &r.installation {
+        vector(
+            &g,
+            "lcc_utilisation",
+            &c.lcc_of_node,
+            "1 (DNV-ST-F101 load-controlled combined loading, the largest in the free span; NaN: never in it)",
+        )
+        .map_err(&err)?;
+        attr(&g, "installation_check", c.spec.code.name()).map_err(&err)?;
+        extra.push("lcc_utilisation");
+    }
     let mut dims: Vec<(String, Vec<Option<&str>>)> = series[1..]
         .iter()
         .map(|(name, ..)| (format!("/lay/{name}"), vec![Some("/lay/time")]))
@@ -82,6 +94,11 @@ pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppErr
         per_node[1..]
             .iter()
             .map(|(name, ..)| (format!("/lay/{name}"), vec![Some("/lay/kp")])),
+    );
+    dims.extend(
+        extra
+            .iter()
+            .map(|name| (format!("/lay/{name}"), vec![Some("/lay/kp")])),
     );
     dimension_scales(&f, &dims).map_err(&err)
 }

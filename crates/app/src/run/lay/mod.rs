@@ -44,6 +44,7 @@
 //! but not a clamped tower. The lay's records are kept in memory and written when the run ends
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
+pub mod install;
 pub mod laid;
 mod mesh;
 mod result;
@@ -118,6 +119,7 @@ pub fn lay(
         summary,
         wall_seconds: t0.elapsed().as_secs_f64(),
         lay_down,
+        installation: l.check.take(),
         stop,
         statics: st,
     })
@@ -166,6 +168,8 @@ pub struct Lay {
     left_tower: Option<(f64, f64)>,
     /// When the pipe's end came to rest on the seabed (the lay-down's end).
     rested: Option<f64>,
+    /// The installation check, if the scene has a `[design_check]`.
+    check: Option<install::InstallationCheck>,
 }
 
 impl Lay {
@@ -252,6 +256,18 @@ impl Lay {
         let mut res = LineResults::new(dm.line.nodes());
         dynamics::results(&dm, &state, &ws, &mut res);
         let nodes = LaidNodes::new(&full, o, &st.results.seabed_force);
+        let check = dspec
+            .design_check
+            .zip(dspec.section)
+            .map(|(spec, section)| {
+                install::InstallationCheck::new(
+                    spec,
+                    section,
+                    (top.section.ei, top.section.ea),
+                    (&st.model.arc, &st.results.moment, &st.results.tension),
+                    full.nodes(),
+                )
+            });
         let mut l = Self {
             file,
             d_top: full.elements[first].l0 * (1.0 + eps),
@@ -287,6 +303,7 @@ impl Lay {
             pipe_end,
             left_tower: None,
             rested: None,
+            check,
             full,
         };
         l.mark_positions();
@@ -408,6 +425,7 @@ impl Lay {
                 &self.res,
                 1e-3 * self.full.elements[self.pipe_end].contact_od,
             );
+            self.check_installation();
             if self.pipe_end_rests() {
                 self.rested = Some(self.state.t);
                 self.record();
@@ -463,6 +481,23 @@ impl Lay {
         self.tension = self.exit_tension();
         self.measured += (self.tension - self.measured) * (dt / TENSION_FILTER).min(1.0);
         Ok(())
+    }
+
+    /// The installation check of the step's free span (nothing without a `[design_check]`).
+    fn check_installation(&mut self) {
+        let Some(c) = self.check.as_mut() else {
+            return;
+        };
+        let span = catena_fe::statics::touchdown_point(&self.res.penetration)
+            .map_or(self.res.moment.len(), |(i, _)| i);
+        let a_exit = self.full.arc[self.first] + self.d_top / (1.0 + self.eps);
+        let (arc, first) = (&self.full.arc, self.first);
+        c.observe(
+            (self.state.t, first, span),
+            &self.res,
+            |i| arc[first + i] - a_exit,
+            &self.nodes.kp,
+        );
     }
 
     /// Whether the lay-down is over: the pipe's end, off the tower, presses on the seabed with 90 %

@@ -52,6 +52,8 @@ pub struct LayRun {
     pub stop: Option<Stop>,
     /// The lay-down, if the scene has one.
     pub lay_down: Option<LayDown>,
+    /// The installation check, if the scene has a `[design_check]`.
+    pub installation: Option<super::install::InstallationCheck>,
 }
 
 /// What a lay-down did.

@@ -251,6 +251,9 @@ mod tests {
             youngs_modulus: 207e9,
             poisson: 0.3,
             design_factor: 0.8,
+            gamma_c: 1.0,
+            gamma_eps: 2.5,
+            alpha_h: 0.92,
         };
         let mut d = DesignCheck::new(spec, &[(2.0, 1e6), (0.5, 1e6)], &[0.0, 2.0, 2.5]);
         let pi2 = std::f64::consts::PI.powi(2);
