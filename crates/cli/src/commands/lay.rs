@@ -15,24 +15,30 @@ use catena_io::{h5, lay as report, plot};
 use super::run::RunCommandOptions;
 use super::write_json;
 
-/// Lays the pipe of `scene` and writes its outputs into `out` (`restart`: the command was given a
-/// checkpoint).
+/// Lays the pipe of `scene` and writes its outputs into `out`: with `--checkpoint-every N`, a
+/// checkpoint `DIR/checkpoint.json` every N steps; with `--restart FILE`, from that checkpoint;
+/// `--stop-after N` ends after N steps.
 pub fn run_lay(
     scene: RiserScene,
     out: &Path,
     opts: &RunCommandOptions,
-    restart: bool,
 ) -> Result<String, AppError> {
-    if restart || opts.checkpoint_every.is_some() || opts.stop_after.is_some() {
-        return Err(AppError::Run {
-            file: scene.file.clone(),
-            message: "--restart, --checkpoint-every and --stop-after: not taken by a lay run \
-                      (key `lay`) yet"
-                .into(),
-        });
-    }
     let (progress, stop) = (opts.progress, opts.stop.clone());
     std::fs::create_dir_all(out).map_err(|e| AppError::io(out, e))?;
+    let restart = match &opts.restart {
+        Some(p) => Some((
+            lay::checkpoint::LayCheckpoint::read(p)?,
+            p.display().to_string(),
+        )),
+        None => None,
+    };
+    let lay_opts = lay::LayOptions {
+        checkpoint: opts
+            .checkpoint_every
+            .map(|every| (out.join("checkpoint.json"), every)),
+        restart,
+        stop_after: opts.stop_after,
+    };
     let mut last_shown = 0.0;
     let mut on_step = |p: &lay::LayProgress| {
         if progress && p.t - last_shown >= 0.02 * p.duration {
@@ -44,7 +50,8 @@ pub fn run_lay(
         }
         !stop.as_ref().is_some_and(|s| s.load(Ordering::Relaxed))
     };
-    let r = lay::simulate_lay(scene, &mut on_step)?;
+    let st = catena::run::statics::solve(lay::statics_scene(scene))?;
+    let r = lay::lay_with(st, lay_opts, &mut on_step)?;
     if progress {
         eprintln!();
     }

@@ -57,12 +57,12 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             message: "--checkpoint-every: expected a number of steps >= 1".into(),
         });
     }
-    let restart = opts.restart.as_deref().map(Checkpoint::read).transpose()?;
     let scene = statics::read_scene(case)?;
     warn(&scene);
     if scene.lay.is_some() {
-        return super::lay::run_lay(scene, out, opts, restart.is_some());
+        return super::lay::run_lay(scene, out, opts);
     }
+    let restart = opts.restart.as_deref().map(Checkpoint::read).transpose()?;
     needs_dynamic(&scene)?;
     let (st, statics_seconds) = {
         let t = Instant::now();

@@ -68,10 +68,10 @@ pub struct LaidNodes {
     /// steady part is made of the laid ones.
     pub landed: Vec<bool>,
     #[serde(skip)]
-    last_mode: Vec<u8>,
+    pub(super) last_mode: Vec<u8>,
     /// The penetration where the current uplift began.
     #[serde(skip)]
-    uplift_from: Vec<f64>,
+    pub(super) uplift_from: Vec<f64>,
 }
 
 impl LaidNodes {

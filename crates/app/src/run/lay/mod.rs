@@ -44,6 +44,7 @@
 //! but not a clamped tower. The lay's records are kept in memory and written when the run ends
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
+pub mod checkpoint;
 pub mod install;
 pub mod laid;
 mod mesh;
@@ -83,14 +84,39 @@ pub fn simulate_lay(
     lay(statics::solve(statics_scene(scene))?, on_step)
 }
 
+/// Options of a lay: checkpoints, a restart, a stop after some steps.
+#[derive(Debug, Clone, Default)]
+pub struct LayOptions {
+    /// Write a checkpoint to this file every this many steps.
+    pub checkpoint: Option<(std::path::PathBuf, u64)>,
+    /// Continue from this checkpoint (read from the file named).
+    pub restart: Option<(checkpoint::LayCheckpoint, String)>,
+    /// Stop (successfully) after this many steps, e.g. to end a job at a checkpoint.
+    pub stop_after: Option<u64>,
+}
+
 /// Lays the pipe of a solved lay scene (see [`statics_scene`]); `on_step` sees every converged
 /// step and stops the lay by returning `false`.
 pub fn lay(
     st: StaticRun,
     on_step: &mut dyn FnMut(&LayProgress) -> bool,
 ) -> Result<LayRun, AppError> {
+    lay_with(st, LayOptions::default(), on_step)
+}
+
+/// [`lay`] with checkpoints, a restart or a stop after some steps.
+pub fn lay_with(
+    st: StaticRun,
+    opts: LayOptions,
+    on_step: &mut dyn FnMut(&LayProgress) -> bool,
+) -> Result<LayRun, AppError> {
     let t0 = Instant::now();
     let mut l = Lay::start(&st)?;
+    if let Some((cp, file)) = &opts.restart {
+        l.restore(cp, file, &st.scene.text)?;
+    }
+    l.checkpoint_to = opts.checkpoint;
+    l.stop_after = opts.stop_after;
     let stop = l.run_until(l.dspec.duration, on_step)?;
     l.finish();
     let summary = l.summary(&st);
@@ -170,6 +196,14 @@ pub struct Lay {
     rested: Option<f64>,
     /// The installation check, if the scene has a `[design_check]`.
     check: Option<install::InstallationCheck>,
+    /// Full steps taken (of `[dynamic] time_step`).
+    full_steps: u64,
+    /// Checkpoints: the file and the interval in steps.
+    checkpoint_to: Option<(std::path::PathBuf, u64)>,
+    /// Stop after this many steps.
+    stop_after: Option<u64>,
+    /// The scene's text hash (checkpoints).
+    scene_hash: String,
 }
 
 impl Lay {
@@ -304,6 +338,10 @@ impl Lay {
             left_tower: None,
             rested: None,
             check,
+            full_steps: 0,
+            checkpoint_to: None,
+            stop_after: None,
+            scene_hash: crate::scene::text_hash(&scene.text),
             full,
         };
         l.mark_positions();
@@ -443,6 +481,15 @@ impl Lay {
             };
             if !on_step(&p) {
                 return Ok(Some(Stop::Interrupted("interrupted".into())));
+            }
+            self.full_steps += 1;
+            if let Some((path, every)) = &self.checkpoint_to {
+                if self.full_steps % every == 0 {
+                    self.checkpoint().write(path)?;
+                }
+            }
+            if self.stop_after == Some(self.full_steps) {
+                return Ok(Some(Stop::StoppedAfter(self.full_steps)));
             }
         }
         Ok(None)
