@@ -83,8 +83,12 @@ pub struct LayCheckpoint {
     pub nodes: (Vec<Vec<u64>>, Vec<u32>, Vec<u8>, Vec<bool>),
     /// The installation check's findings: each node's LCC, the largest LCC and DCC, the strain
     /// resistance (bits).
-    pub check: Option<(Vec<u64>, [u64; 4], [u64; 4], u64)>,
+    pub check: Option<CheckFindings>,
 }
+
+/// The installation check's findings in a checkpoint: each node's LCC, the largest LCC and DCC
+/// (value, and when and where), the strain resistance, as bits.
+pub type CheckFindings = (Vec<u64>, [u64; 4], [u64; 4], u64);
 
 /// The records' series, in the checkpoint's order.
 pub(super) fn records_of(r: &mut LayRecords) -> [&mut Vec<f64>; 9] {

@@ -61,14 +61,13 @@ use catena_fe::assembly::{LineResults, Placement};
 use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel, StepError};
 use catena_fe::model::LineModel;
 use catena_fe::motion::TopMotion;
-use catena_seabed::law::Seabed;
 
 use crate::error::AppError;
 use crate::run::observe::Stop;
 use crate::run::statics::{self, StaticRun};
 use crate::scene::lay::{LaySpec, Payout};
 use crate::scene::riser::{DynamicSpec, RiserScene};
-use laid::{backbone_penetration, stats, LaidNodes, LayRecords, LaySummary};
+use laid::{LaidNodes, LayRecords};
 use window::Store;
 
 /// The time constant of the filter through which a tensioner reads the top tension, s [A]: it
@@ -758,62 +757,5 @@ impl Lay {
 
     fn positions(&self) -> Vec<[f64; 2]> {
         (0..self.full.nodes()).map(|g| self.at(g)).collect()
-    }
-
-    fn summary(&self, st: &StaticRun) -> LaySummary {
-        let top = self.full.elements[self.pipe_end];
-        let w = top.weight;
-        let d = top.contact_od;
-        let law: Option<&Seabed> = self.full.seabed_law(self.on_vessel);
-        let z = |p: f64| law.map_or(f64::NAN, |s| backbone_penetration(s, p, d));
-        // The steady part: laid during the lay, before a lay-down's touchdown.
-        let kp_down = self.left_tower.map_or(f64::INFINITY, |(_, kp)| kp);
-        let steady = |g: &usize| {
-            self.nodes.landed[*g]
-                && self.nodes.as_laid[*g].is_finite()
-                && self.nodes.kp[*g] <= kp_down
-        };
-        let n = self.full.nodes();
-        let (mean, lo, hi, count) = stats((0..n).filter(steady).map(|g| self.nodes.as_laid[g]));
-        let lay_factor = (0..n)
-            .filter(steady)
-            .map(|g| self.nodes.max_contact[g])
-            .fold(f64::NAN, f64::max)
-            / w;
-        let static_max = st.results.seabed_force.iter().copied().fold(0.0, f64::max);
-        let z_w = z(w);
-        let td = st.results.seabed_force.iter().position(|&p| p > 0.0);
-        let t0 = td.map_or(f64::NAN, |i| st.results.tension[i]);
-        let lambda = top.section.ei * (w / z_w) / (t0 * t0);
-        let r = &self.records;
-        let (_, t_lo, t_hi, _) = stats(r.top_tension.iter().copied());
-        let (_, m_lo, _, _) = stats(r.sag_moment.iter().copied());
-        let sag_strain = -m_lo * 0.5 * top.od / top.section.ei + t_hi / top.section.ea;
-        let (episodes, ..) = stats(
-            (0..n)
-                .filter(steady)
-                .map(|g| f64::from(self.nodes.episodes[g])),
-        );
-        LaySummary {
-            paid_out: self.paid,
-            vessel_travel: self.vessel_x,
-            steady_nodes: count,
-            as_laid_mean: mean,
-            as_laid_min: lo,
-            as_laid_max: hi,
-            submerged_weight: w,
-            self_weight_embedment: z_w,
-            static_embedment: z(static_max),
-            static_lay_factor: static_max / w,
-            lay_factor,
-            lay_factor_closed_form: 0.6 + 0.4 * lambda.powf(0.25),
-            lambda,
-            dynamic_embedment_factor: mean / z_w,
-            top_tension_min: t_lo,
-            top_tension_max: t_hi,
-            sag_moment_max: -m_lo,
-            sag_strain_max: sag_strain,
-            episodes_mean: episodes,
-        }
     }
 }
