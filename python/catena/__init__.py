@@ -93,6 +93,10 @@ def run(scene, progress=None, every: int = 100) -> Results:
     times a second, and at the last step; Ctrl-C stops the run and raises ``KeyboardInterrupt``. A
     run that stops early (a step that does not converge) still returns everything up to its last
     converged step: see ``summary["completed"]`` and ``summary["stop_reason"]``.
+
+    A lay (a scene with ``[lay]``) returns ``results.h5``'s ``/lay`` arrays under the same names
+    (``lay/time``, ``lay/paid_out``, ``lay/top_tension``, ``lay/kp``, ``lay/as_laid_embedment``, …;
+    ``docs/results.md``) and ``summary.json`` with its ``lay``; ``progress`` is not called.
     """
     return Results(_catena.run(_scene(scene), progress, every))
 

@@ -377,3 +377,20 @@ def test_a_lay_s_results_h5_opens_in_xarray(tmp_path):
         steady = ds.as_laid_embedment.where(ds.landed_during_lay == 1)
         summary = json.loads((out / "summary.json").read_text())["lay"]
         assert abs(float(steady.mean()) - summary["as_laid_embedment"]["mean"]) < 1e-12
+
+
+def test_a_lay_from_python_is_the_command_s(tmp_path):
+    """`catena.run` on a lay scene returns `/lay`'s arrays under the names of results.h5, the same
+    bits as the `catena` command's, and summary.json's `lay`."""
+    h5py = pytest.importorskip("h5py")
+    case = ROOT / "cases" / "lay" / "jlay-12in-steady.toml"
+    r = catena.run(case)
+    out = tmp_path / "out"
+    cli("run", case, "--quiet", "--out", out)
+    with h5py.File(out / "results.h5") as f:
+        for name in ["time", "paid_out", "top_tension", "touchdown_x", "kp", "as_laid_embedment",
+                     "max_contact_force", "episodes"]:
+            np.testing.assert_array_equal(r[f"lay/{name}"], f["lay"][name][:])
+    summary = json.loads((out / "summary.json").read_text())["lay"]
+    assert r.summary["lay"]["lay_factor"] == summary["lay_factor"]
+    assert r.summary["lay"]["as_laid_embedment"] == summary["as_laid_embedment"]

@@ -233,6 +233,9 @@ fn run<'py>(
     progress: Option<Py<PyAny>>,
     every: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if scene.scene.lay.is_some() {
+        return run_lay(py, scene);
+    }
     let mut records = Records::new();
     let mut prog = Progress {
         callback: progress,
@@ -324,6 +327,59 @@ fn run<'py>(
         "fatigue_counted_seconds": r.fatigue.as_ref().map(|f| f.counted_seconds()),
     });
     out.set_item("summary", summary.to_string())?;
+    Ok(out)
+}
+
+/// A lay (a scene with `[lay]`): `results.h5`'s `/lay` arrays under the same names (`lay/time`,
+/// `lay/as_laid_embedment`, …) and `summary.json` (with its `lay`). The interpreter is released
+/// while catena lays the pipe.
+fn run_lay<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>> {
+    let input = scene.scene.clone();
+    let r = py
+        .detach(|| catena::run::lay::simulate_lay(input, &mut |_| true))
+        .map_err(err)?;
+    let arrays = PyDict::new(py);
+    let rec = &r.records;
+    let nr = rec.time.len();
+    for (name, v) in [
+        ("time", &rec.time),
+        ("paid_out", &rec.paid_out),
+        ("vessel_x", &rec.vessel_x),
+        ("top_tension", &rec.top_tension),
+        ("payout_rate", &rec.payout_rate),
+        ("touchdown_x", &rec.touchdown_x),
+        ("touchdown_arc", &rec.touchdown_arc),
+        ("window_nodes", &rec.window_nodes),
+        ("sag_moment", &rec.sag_moment),
+    ] {
+        arrays.set_item(format!("lay/{name}"), array(py, v, vec![nr]))?;
+    }
+    let n = &r.nodes;
+    let nn = n.kp.len();
+    let episodes: Vec<f64> = n.episodes.iter().map(|&e| f64::from(e)).collect();
+    let landed: Vec<f64> = n.landed.iter().map(|&b| f64::from(u8::from(b))).collect();
+    let x: Vec<f64> = r.positions.iter().map(|p| p[0]).collect();
+    let z: Vec<f64> = r.positions.iter().map(|p| p[1]).collect();
+    for (name, v) in [
+        ("kp", &n.kp),
+        ("arc", &n.arc),
+        ("as_laid_embedment", &n.as_laid),
+        ("laid_x", &n.laid_x),
+        ("max_contact_force", &n.max_contact),
+        ("episodes", &episodes),
+        ("strength_factor", &n.strength),
+        ("landed_during_lay", &landed),
+        ("x", &x),
+        ("z", &z),
+    ] {
+        arrays.set_item(format!("lay/{name}"), array(py, v, vec![nn]))?;
+    }
+    if let Some(c) = &r.installation {
+        arrays.set_item("lay/lcc_utilisation", array(py, &c.lcc_of_node, vec![nn]))?;
+    }
+    let out = PyDict::new(py);
+    out.set_item("arrays", arrays)?;
+    out.set_item("summary", catena_io::lay::json(&r).to_string())?;
     Ok(out)
 }
 

@@ -127,6 +127,13 @@ pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> 
         file: path.display().to_string(),
         message: m,
     };
+    if file.link_exists("lay") {
+        return Err(bad(
+            "a lay's results (/lay): the animation does not draw a lay yet (lay.png and /lay \
+             have its touchdown's track)"
+                .into(),
+        ));
+    }
     if !file.link_exists("dynamic") {
         return Err(bad(
             "no /dynamic group: a dynamic run's results.h5 is needed (`catena run` with a \

@@ -72,12 +72,15 @@ pub struct LaidNodes {
     /// The penetration where the current uplift began.
     #[serde(skip)]
     pub(super) uplift_from: Vec<f64>,
+    /// The pipe's last end's node: the nodes above it are a lay-down's wire, never laid.
+    pub pipe_end: usize,
 }
 
 impl LaidNodes {
-    /// The nodes of the mesh `full`, the first `o` of them on the vessel at the start, the others
-    /// those of the statics with these contact forces.
-    pub fn new(full: &LineModel, o: usize, static_contact: &[f64]) -> Self {
+    /// The nodes of the mesh `full`, the first `o` of them on the vessel at the start (from
+    /// `pipe_end` on, the pipe; a lay-down's wire above), the others those of the statics with
+    /// these contact forces.
+    pub fn new(full: &LineModel, (o, pipe_end): (usize, usize), static_contact: &[f64]) -> Self {
         let n = full.nodes();
         let total = full.length();
         Self {
@@ -93,6 +96,7 @@ impl LaidNodes {
                 .collect(),
             last_mode: vec![0; n],
             uplift_from: vec![0.0; n],
+            pipe_end,
         }
     }
 
@@ -124,6 +128,9 @@ impl LaidNodes {
     /// pipe below the node (the node at the pipe's end, between the pipe and a lay-down's wire,
     /// has the mean of their diameters for its contact; its as-laid embedment is the pipe's).
     pub fn lay(&mut self, full: &LineModel, g: usize, (x, z): (f64, f64), h: &SeabedHistory) {
+        if g < self.pipe_end {
+            return;
+        }
         let d = full
             .elements
             .get(g)

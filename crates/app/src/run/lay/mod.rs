@@ -288,7 +288,7 @@ impl Lay {
         };
         let mut res = LineResults::new(dm.line.nodes());
         dynamics::results(&dm, &state, &ws, &mut res);
-        let nodes = LaidNodes::new(&full, o, &st.results.seabed_force);
+        let nodes = LaidNodes::new(&full, (o, pipe_end), &st.results.seabed_force);
         let check = dspec
             .design_check
             .zip(dspec.section)
