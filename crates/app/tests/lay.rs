@@ -5,10 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use catena::run::lay::{self, laid::backbone_penetration, LayRun};
+use catena::run::lay::{self, LayRun};
 use catena::run::statics;
 use catena::scene::riser::RiserScene;
 use catena::scene::NoFiles;
+use catena_fe::statics::static_embedment_on;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -158,7 +159,7 @@ fn as_laid_is_the_backbone_at_the_largest_force() {
     let mut worst = 0.0f64;
     let mut count = 0;
     for g in (0..n.kp.len()).filter(|&g| n.landed[g] && n.as_laid[g].is_finite()) {
-        let z = backbone_penetration(law, n.max_contact[g], d);
+        let z = static_embedment_on(law, d, n.max_contact[g]).expect("embedment");
         worst = worst.max((n.as_laid[g] / z - 1.0).abs());
         count += 1;
     }

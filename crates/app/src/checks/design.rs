@@ -351,12 +351,11 @@ impl Resistance {
         }
     }
 
-    /// The DNV-ST-F101 load-controlled combined-loading utilisation at the pressures `p_ld`
-    /// (the internal pressure, also `p_min`), `p_e` (Pa) for the design moment `md` (N·m) and
-    /// effective tension `ted` (N) (see the module docs).
+    /// The pressure difference `Δp = p_ld − p_e` over the burst resistance, and the flow stress
+    /// parameter `α_c` at it (`q_h` from an internal overpressure, 0 otherwise): what F201's and
+    /// F101's criteria share.
     #[inline]
-    pub fn f101(&self, p_ld: f64, p_e: f64, md: f64, ted: f64) -> Utilisation {
-        let dp = p_ld - p_e;
+    fn flow_stress(&self, dp: f64) -> (f64, f64) {
         let r = dp / self.pb;
         let qh = if dp > 0.0 {
             r * (2.0 / 3f64.sqrt())
@@ -364,7 +363,16 @@ impl Resistance {
             0.0
         };
         let beta = (0.4 + qh) * self.beta_factor;
-        let alpha_c = (1.0 - beta) + beta * self.fu_over_fy;
+        (r, (1.0 - beta) + beta * self.fu_over_fy)
+    }
+
+    /// The DNV-ST-F101 load-controlled combined-loading utilisation at the pressures `p_ld`
+    /// (the internal pressure, also `p_min`), `p_e` (Pa) for the design moment `md` (N·m) and
+    /// effective tension `ted` (N) (see the module docs).
+    #[inline]
+    pub fn f101(&self, p_ld: f64, p_e: f64, md: f64, ted: f64) -> Utilisation {
+        let dp = p_ld - p_e;
+        let (r, alpha_c) = self.flow_stress(dp);
         let g = self.gamma;
         let bending = g * md.abs() / (alpha_c * self.mk_unit);
         let tension = (g * ted / (alpha_c * self.tk_unit)).powi(2);
@@ -416,14 +424,7 @@ impl Resistance {
     #[inline]
     pub fn dnv(&self, p_ld: f64, p_e: f64, md: f64, ted: f64) -> Utilisation {
         let dp = p_ld - p_e;
-        let r = dp / self.pb;
-        let qh = if dp > 0.0 {
-            r * (2.0 / 3f64.sqrt())
-        } else {
-            0.0
-        };
-        let beta = (0.4 + qh) * self.beta_factor;
-        let alpha_c = (1.0 - beta) + beta * self.fu_over_fy;
+        let (r, alpha_c) = self.flow_stress(dp);
         let mk = self.mk_unit * alpha_c;
         let tk = self.tk_unit * alpha_c;
         let g = self.gamma;

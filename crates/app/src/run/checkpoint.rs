@@ -41,22 +41,12 @@ pub struct Checkpoint {
 impl Checkpoint {
     /// Writes the checkpoint as JSON (exact: floats round-trip), replacing the file atomically.
     pub fn write(&self, path: &Path) -> Result<(), AppError> {
-        let tmp = path.with_extension("json.tmp");
-        let text = serde_json::to_string(self).map_err(|e| AppError::Output {
-            path: path.to_path_buf(),
-            message: format!("cannot write the checkpoint: {e}"),
-        })?;
-        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
-        std::fs::rename(&tmp, path).map_err(|e| AppError::io(path, e))
+        write_json(path, self)
     }
 
     /// Reads a checkpoint.
     pub fn read(path: &Path) -> Result<Self, AppError> {
-        let text = std::fs::read_to_string(path).map_err(|e| AppError::io(path, e))?;
-        serde_json::from_str(&text).map_err(|e| AppError::Checkpoint {
-            file: path.display().to_string(),
-            what: format!("not a catena checkpoint ({e})"),
-        })
+        read_json(path, "a catena checkpoint")
     }
 
     /// Checks that the checkpoint continues this run: the same version and scene, a State that fits
@@ -72,18 +62,11 @@ impl Checkpoint {
             file: file.to_string(),
             what,
         };
-        if self.catena_version != VERSION {
-            return Err(bad(format!(
-                "it was written by catena {}, this is catena {VERSION}",
-                self.catena_version
-            )));
-        }
-        if self.scene_hash != crate::scene::text_hash(scene_text) {
-            return Err(bad(format!(
-                "it was written for another scene (the text of {} differs)",
-                self.scene_file
-            )));
-        }
+        same_origin(
+            (&self.catena_version, &self.scene_hash, &self.scene_file),
+            scene_text,
+        )
+        .map_err(bad)?;
         self.state.check_fits(dm).map_err(bad)?;
         let n_steps = (spec.duration / spec.dt).round() as u64;
         if self.step == 0 || self.step > n_steps {
@@ -107,4 +90,46 @@ impl Checkpoint {
         }
         Ok(())
     }
+}
+
+/// Writes a checkpoint (any of a run's kinds) as JSON, replacing the file atomically.
+pub(crate) fn write_json(path: &Path, value: &impl Serialize) -> Result<(), AppError> {
+    let tmp = path.with_extension("json.tmp");
+    let text = serde_json::to_string(value).map_err(|e| AppError::Output {
+        path: path.to_path_buf(),
+        message: format!("cannot write the checkpoint: {e}"),
+    })?;
+    std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| AppError::io(path, e))
+}
+
+/// Reads a checkpoint (`what` it should be, for the message).
+pub(crate) fn read_json<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    what: &str,
+) -> Result<T, AppError> {
+    let text = std::fs::read_to_string(path).map_err(|e| AppError::io(path, e))?;
+    serde_json::from_str(&text).map_err(|e| AppError::Checkpoint {
+        file: path.display().to_string(),
+        what: format!("not {what} ({e})"),
+    })
+}
+
+/// Whether a checkpoint written by `(version, scene hash, scene file)` is of this catena and this
+/// scene's text; else what differs.
+pub(crate) fn same_origin(
+    (version, hash, scene_file): (&str, &str, &str),
+    scene_text: &str,
+) -> Result<(), String> {
+    if version != VERSION {
+        return Err(format!(
+            "it was written by catena {version}, this is catena {VERSION}"
+        ));
+    }
+    if hash != crate::scene::text_hash(scene_text) {
+        return Err(format!(
+            "it was written for another scene (the text of {scene_file} differs)"
+        ));
+    }
+    Ok(())
 }

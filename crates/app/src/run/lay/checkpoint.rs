@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::laid::{LaidNodes, LayRecords};
 use crate::error::AppError;
-use crate::run::checkpoint::VERSION;
+use crate::run::checkpoint::{read_json, same_origin, write_json, VERSION};
 
 /// The bits of each number (NaN kept).
 pub(super) fn bits(v: &[f64]) -> Vec<u64> {
@@ -119,22 +119,12 @@ pub(super) fn node_numbers(n: &mut LaidNodes) -> [&mut Vec<f64>; 5] {
 impl LayCheckpoint {
     /// Writes it as JSON, replacing the file atomically.
     pub fn write(&self, path: &std::path::Path) -> Result<(), AppError> {
-        let tmp = path.with_extension("json.tmp");
-        let text = serde_json::to_string(self).map_err(|e| AppError::Output {
-            path: path.to_path_buf(),
-            message: format!("cannot write the checkpoint: {e}"),
-        })?;
-        std::fs::write(&tmp, text).map_err(|e| AppError::io(&tmp, e))?;
-        std::fs::rename(&tmp, path).map_err(|e| AppError::io(path, e))
+        write_json(path, self)
     }
 
     /// Reads one.
     pub fn read(path: &std::path::Path) -> Result<Self, AppError> {
-        let text = std::fs::read_to_string(path).map_err(|e| AppError::io(path, e))?;
-        serde_json::from_str(&text).map_err(|e| AppError::Checkpoint {
-            file: path.display().to_string(),
-            what: format!("not a catena lay checkpoint ({e})"),
-        })
+        read_json(path, "a catena lay checkpoint")
     }
 
     /// Checks that it continues this lay: the same version and scene, a window within the pipe
@@ -144,18 +134,11 @@ impl LayCheckpoint {
             file: file.to_string(),
             what,
         };
-        if self.catena_version != VERSION {
-            return Err(bad(format!(
-                "it was written by catena {}, this is catena {VERSION}",
-                self.catena_version
-            )));
-        }
-        if self.scene_hash != crate::scene::text_hash(scene_text) {
-            return Err(bad(format!(
-                "it was written for another scene (the text of {} differs)",
-                self.scene_file
-            )));
-        }
+        same_origin(
+            (&self.catena_version, &self.scene_hash, &self.scene_file),
+            scene_text,
+        )
+        .map_err(bad)?;
         let (first, last) = self.window;
         if !(first < last && last < nodes) || self.history.len() != nodes {
             return Err(bad(format!(

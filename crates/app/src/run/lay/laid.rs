@@ -20,7 +20,7 @@
 
 use catena_fe::assembly::LineResults;
 use catena_fe::model::LineModel;
-use catena_seabed::law::{Seabed, SeabedHistory};
+use catena_seabed::law::SeabedHistory;
 use catena_seabed::rq::Mode;
 use serde::Serialize;
 
@@ -189,30 +189,6 @@ pub struct LaySummary {
     pub sag_strain_max: f64,
     /// Mean uplift–repenetration episodes per steady node.
     pub episodes_mean: f64,
-}
-
-/// The penetration at which the backbone's force is `p` (N/m), by bisection (the backbone rises
-/// with the penetration), within 1e-9 m.
-pub fn backbone_penetration(law: &Seabed, p: f64, diameter: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, diameter);
-    let mut k = 0;
-    while law.backbone(hi).total() < p && k < 60 {
-        lo = hi;
-        hi *= 2.0;
-        k += 1;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if law.backbone(mid).total() < p {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo < 1e-9 {
-            break;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 /// Mean, smallest and largest of the finite values.

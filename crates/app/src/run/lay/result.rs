@@ -3,11 +3,12 @@
 
 use catena_fe::model::LineModel;
 
-use super::laid::{backbone_penetration, stats, LaidNodes, LayRecords, LaySummary};
+use super::laid::{stats, LaidNodes, LayRecords, LaySummary};
 use crate::run::observe::Stop;
 use crate::run::statics::StaticRun;
 use crate::scene::lay::LaySpec;
 use crate::scene::riser::DynamicSpec;
+use catena_fe::statics::static_embedment_on;
 use catena_seabed::law::Seabed;
 
 /// A finished (or stopped) lay.
@@ -98,7 +99,10 @@ impl super::Lay {
         let w = top.weight;
         let d = top.contact_od;
         let law: Option<&Seabed> = self.full.seabed_law(self.on_vessel);
-        let z = |p: f64| law.map_or(f64::NAN, |s| backbone_penetration(s, p, d));
+        let z = |p: f64| {
+            law.and_then(|s| static_embedment_on(s, d, p))
+                .unwrap_or(f64::NAN)
+        };
         // The steady part: laid during the lay, before a lay-down's touchdown.
         let kp_down = self.left_tower.map_or(f64::INFINITY, |(_, kp)| kp);
         let steady = |g: &usize| {
