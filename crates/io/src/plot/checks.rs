@@ -260,7 +260,7 @@ pub fn extremes(
                     )
                     .map_err(|e| perr(e.to_string()))?;
                 chart
-                    .draw_series(LineSeries::new(line.iter().copied(), red.stroke_width(2)))
+                    .draw_series(super::segments(line.iter().copied(), red.stroke_width(2)))
                     .map_err(|e| perr(e.to_string()))?;
             }
         }
@@ -403,7 +403,7 @@ pub fn strength(
                 )
                 .map_err(|e| perr(e.to_string()))?;
             chart
-                .draw_series(LineSeries::new(line.iter().copied(), red.stroke_width(2)))
+                .draw_series(super::segments(line.iter().copied(), red.stroke_width(2)))
                 .map_err(|e| perr(e.to_string()))?;
         }
     }

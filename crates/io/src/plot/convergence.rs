@@ -98,7 +98,7 @@ pub fn plot(path: &Path, st: &Study) -> Result<(), AppError> {
                 .map_err(&err)?;
             for (pts, c) in &series {
                 chart
-                    .draw_series(LineSeries::new(
+                    .draw_series(super::segments(
                         pts.iter().map(|p| (p.0, p.1)),
                         c.stroke_width(2),
                     ))

@@ -83,7 +83,7 @@ pub fn life_png(
                     sel.iter().map(|&i| (l.arc[i], life[i].min(ymax))).collect();
                 let c = colours[j % 2];
                 chart
-                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                    .draw_series(super::segments(pts, c.stroke_width(2)))
                     .map_err(|e| perr(e.to_string()))?
                     .label(format!("{name} fibre"))
                     .legend(move |(x, y)| {

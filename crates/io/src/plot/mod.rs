@@ -406,6 +406,19 @@ pub fn column_bands(points: &[(f64, f64)], (x0, x1): (f64, f64), columns: usize)
     out
 }
 
+/// A line of more than a pixel's width as its separate segments: plotters joins the segments of a
+/// wide `LineSeries` with mitres, and at a peak a pixel or two wide a mitre reaches far beyond the
+/// data, out of its panel and across the next (plotters' issue 347). Segments have no joins.
+pub(crate) fn segments(
+    points: impl IntoIterator<Item = (f64, f64)>,
+    style: ShapeStyle,
+) -> Vec<PathElement<(f64, f64)>> {
+    let p: Vec<(f64, f64)> = points.into_iter().collect();
+    p.windows(2)
+        .map(|w| PathElement::new(vec![w[0], w[1]], style))
+        .collect()
+}
+
 /// Draws a series as a line; a long one (more than two points to a pixel column, where a line
 /// would blot into a block and dots break up) as each pixel column's least-to-greatest band in a
 /// light shade of its colour with a line through the columns' means.
@@ -417,10 +430,7 @@ fn line_or_band<'a, 'b, DB: DrawingBackend + 'a>(
     let columns = chart.plotting_area().dim_in_pixel().0 as usize;
     if points.len() <= 2 * columns.max(1) {
         return chart
-            .draw_series(LineSeries::new(
-                points.iter().copied(),
-                colour.stroke_width(2),
-            ))
+            .draw_series(segments(points.iter().copied(), colour.stroke_width(2)))
             .map_err(|e| e.to_string());
     }
     let range = chart.x_range();
@@ -629,7 +639,7 @@ fn scaled_panel<DB: DrawingBackend>(
     let mut chart = framed_chart(area, caption, (xlabel, ylabel), xr, yr)?;
     for (v, c) in series {
         chart
-            .draw_series(LineSeries::new(v.iter().copied(), c.stroke_width(2)))
+            .draw_series(segments(v.iter().copied(), c.stroke_width(2)))
             .map_err(|e| e.to_string())?;
     }
     Ok(())
@@ -656,4 +666,55 @@ fn marked_panel<DB: DrawingBackend>(
         }?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod line_tests {
+    use plotters::prelude::*;
+
+    /// A record of sharp one-sample spikes (a tension ringing at a window's moves), fewer points
+    /// than two a pixel column so drawn as a line: nothing of its colour outside its panel, the
+    /// lower half of the image (plotters' mitres at such peaks reached the panel above).
+    #[test]
+    fn a_spiky_line_stays_in_its_panel() {
+        super::init_fonts();
+        let size = (900u32, 800u32);
+        let colour = RGBColor(200, 30, 30);
+        let points: Vec<(f64, f64)> = (0..1200)
+            .map(|i| {
+                (
+                    i as f64,
+                    if i % 37 == 0 {
+                        113.0
+                    } else {
+                        111.5 + 1e-3 * (i % 2) as f64
+                    },
+                )
+            })
+            .collect();
+        let mut rgb = super::pixels(size, None);
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+            let halves = root.split_evenly((2, 1));
+            super::lines_panel(
+                &halves[1],
+                "spikes",
+                ("t", "T"),
+                &[super::Labelled {
+                    points,
+                    colour,
+                    label: "",
+                }],
+                &[],
+                None,
+                false,
+            )
+            .expect("draws");
+        }
+        let red = |px: &[u8]| px == [colour.0, colour.1, colour.2];
+        let (upper, lower) = rgb.split_at(3 * (size.0 * size.1 / 2) as usize);
+        assert!(lower.chunks(3).any(red), "the line is drawn");
+        let out = upper.chunks(3).filter(|p| red(p)).count();
+        assert_eq!(out, 0, "{out} pixels of the line above its panel");
+    }
 }

@@ -272,7 +272,7 @@ fn spectra_panel<DB: DrawingBackend>(
     for (pts, (_, c, label)) in shown.iter().zip(spectra) {
         let c = *c;
         chart
-            .draw_series(LineSeries::new(
+            .draw_series(super::segments(
                 pts.iter().map(|p| (p.0, p.1.max(s0))),
                 c.stroke_width(2),
             ))

@@ -138,7 +138,7 @@ pub fn soil_test(
         for (pts, mode, _) in segments.into_iter().filter(|s| !s.2) {
             let colour = mode_colour(mode);
             let series = chart
-                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+                .draw_series(super::segments(pts, colour.stroke_width(2)))
                 .map_err(&err)?;
             let k = mode.code() as usize;
             if !labelled[k] {
@@ -196,7 +196,7 @@ fn cycles_panel<DB: DrawingBackend>(
         .label_style(("sans-serif", 16))
         .draw()
         .map_err(|e| e.to_string())?;
-    c2.draw_series(LineSeries::new(
+    c2.draw_series(super::segments(
         pts.iter().copied(),
         mode_colour(Mode::Repenetration).stroke_width(2),
     ))

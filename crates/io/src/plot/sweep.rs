@@ -186,7 +186,7 @@ pub fn figure(
                         let c = colours[j % colours.len()];
                         let xy = points_of(pts);
                         chart
-                            .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))
+                            .draw_series(super::segments(xy.clone(), c.stroke_width(2)))
                             .map_err(|e| perr(e.to_string()))?
                             .label(if label.is_empty() {
                                 "catena".to_string()

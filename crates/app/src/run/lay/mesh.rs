@@ -6,18 +6,22 @@ use catena_fe::model::{Element, FlexJoint, LineModel};
 use crate::scene::lay::{LaySpec, Tower};
 use crate::scene::riser::RiserScene;
 
-/// The scene's statics set up for the tower: a hinged tower's spring, or a clamped tower at a
-/// given angle (a spring 100 times the top element's own bending stiffness `EI/L`), as a
-/// flexjoint at the top whose neutral angle is the tower's (the static departure angle if none).
+/// The scene's statics set up for the tower: at a given tower angle, a hinged tower's spring or a
+/// clamped tower (a spring 100 times the top element's own bending stiffness `EI/L`), as a
+/// flexjoint at the top whose neutral angle is the tower's; at the pipe's own departure angle (no
+/// angle given), a pinned top.
 pub fn statics_scene(mut scene: RiserScene) -> RiserScene {
     let Some(lay) = scene.lay.clone() else {
         return scene;
     };
     let top = scene.model.elements[0];
+    // At the departure angle (no `tower_angle_deg`) the tower holds no moment, hinged or clamped:
+    // the statics' top is pinned. (A stiff spring whose neutral angle the statics took from their
+    // own first solve would hold the top near the catenary seed's angle instead.)
     let stiffness = match (lay.tower, lay.tower_angle) {
-        (Tower::Hinged(k), _) => Some(k),
+        (_, None) => None,
+        (Tower::Hinged(k), Some(_)) => Some(k),
         (Tower::Clamped, Some(_)) => Some(100.0 * top.section.ei / top.l0),
-        (Tower::Clamped, None) => None,
     };
     if let Some(stiffness) = stiffness {
         scene.model.flexjoint = Some(FlexJoint {

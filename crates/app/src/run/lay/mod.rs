@@ -270,6 +270,14 @@ impl Lay {
             file: file.clone(),
             source,
         })?;
+        // The window's own equilibrium: a tower that holds a moment (tilted off the departure
+        // angle, or a hinge's spring) has it at the exit in the statics but one element higher in
+        // the window (nothing changes at the departure angle: the residual is already within
+        // tolerance).
+        window::settle(&dm, scene, &mut u[3 * first..]).map_err(|source| AppError::Statics {
+            file: file.clone(),
+            source,
+        })?;
         let state = dynamics::initial_state(&dm, &u[3 * first..], &mut ws);
         let stride = state.friction_anchor.len() / dm.line.nodes();
         let mut store = Store {

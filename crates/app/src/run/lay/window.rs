@@ -131,6 +131,33 @@ impl Store {
     }
 }
 
+/// Brings the window's start `u` (its nodes' displacements from the statics of the scene's line)
+/// to the window Model's own static equilibrium: the scene's statics hold the tower's moment at the
+/// exit node, the window one element above it on the tower. Returns at once (changing nothing)
+/// where the statics' state is already in equilibrium, as at the pipe's departure angle.
+pub fn settle(
+    dm: &DynamicModel,
+    scene: &crate::scene::riser::RiserScene,
+    u: &mut [f64],
+) -> Result<(), catena_fe::statics::StaticError> {
+    use catena_fe::statics::{self, StaticOptions, StaticWorkspace};
+    let mut ws = StaticWorkspace::new(&dm.line).map_err(statics::StaticError::from)?;
+    let opts = StaticOptions {
+        tol: scene.statics.tolerance,
+        max_iter: scene.statics.max_iterations,
+        ..StaticOptions::default()
+    };
+    statics::solve_in(
+        &dm.line,
+        scene.hydro.as_ref(),
+        &dm.placement,
+        u,
+        &mut ws,
+        &opts,
+    )?;
+    Ok(())
+}
+
 /// A fresh workspace for the window, with the forces `F_n` of the nodes `fresh` (window-local)
 /// evaluated at the State (the others' are carried).
 pub fn workspace(
