@@ -546,6 +546,27 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "lay.wire",
     ),
     (
+        "a laid seabed under a lay",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[as_laid]\nfile = \"laid-seabed.json\"\n\n[lay]",
+        "as_laid",
+    ),
+    (
+        "a laid seabed file that is not there",
+        "lay/on-the-laid-seabed",
+        "file = \"../../out/lay-steady/laid-seabed.json\"",
+        "file = \"no-such-laid-seabed.json\"",
+        "as_laid.file",
+    ),
+    (
+        "a laid seabed's shift that is not a number",
+        "lay/on-the-laid-seabed",
+        "x_shift = -250.0 ",
+        "x_shift = nan ",
+        "as_laid.x_shift",
+    ),
+    (
         "a negative lay ramp",
         "lay/jlay-12in-steady",
         "[lay]",

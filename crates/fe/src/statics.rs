@@ -34,7 +34,7 @@ use crate::environment::Hydro;
 use crate::loads::{self, Iterate, LoadModel, LoadScratch, SeabedPass, TangentScale};
 use crate::model::LineModel;
 use crate::sparse::SolveError;
-use catena_seabed::law::Seabed;
+use catena_seabed::law::{Seabed, SeabedHistory, TrialMemo};
 
 /// Options of the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -128,9 +128,21 @@ pub struct StaticWorkspace {
     dq: Vec<f64>,
     q_trial: Vec<f64>,
     q_conv: Vec<f64>,
+    /// A seabed with a past ([`StaticWorkspace::on_histories`]): each node's committed history,
+    /// the friction anchors and the trial memos.
+    committed: Option<(Vec<SeabedHistory>, Vec<f64>, Vec<TrialMemo>)>,
 }
 
 impl StaticWorkspace {
+    /// The solves that follow find the equilibrium on a seabed with a past (the trench a lay dug):
+    /// each node's seabed reaction is its law's trial from `history` (one per node) rather than
+    /// the backbone, with axial friction from `anchors` where the seabed has it
+    /// ([`crate::dynamics::DynState::friction_anchor`]'s layout).
+    pub fn on_histories(&mut self, history: Vec<SeabedHistory>, anchors: Vec<f64>) {
+        let memo = vec![TrialMemo::default(); history.len()];
+        self.committed = Some((history, anchors, memo));
+    }
+
     /// Builds the pattern and the symbolic factorisation for the Model.
     pub fn new(model: &LineModel) -> Result<Self, SolveError> {
         let n3 = 3 * model.nodes();
@@ -144,6 +156,7 @@ impl StaticWorkspace {
             dq: vec![0.0; model.n_eq],
             q_trial: vec![0.0; n3],
             q_conv: vec![0.0; n3],
+            committed: None,
         })
     }
 
@@ -170,14 +183,18 @@ impl StaticWorkspace {
             k: 1.0,
             c_v: 0.0,
         };
-        loads::assemble(
-            &m,
-            &at,
-            SeabedPass::Backbone,
-            scale,
-            &mut self.asm,
-            &mut self.loads,
-        );
+        let pass = match &mut self.committed {
+            Some((committed, anchors, memo)) => SeabedPass::Trial {
+                committed,
+                anchors,
+                // The laws' rates are their own: the step is not used (the line is at rest).
+                dt: 1.0,
+                memo,
+                keep: None,
+            },
+            None => SeabedPass::Backbone,
+        };
+        loads::assemble(&m, &at, pass, scale, &mut self.asm, &mut self.loads);
     }
 }
 

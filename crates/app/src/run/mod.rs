@@ -13,6 +13,7 @@
 //! ), [`records`] (the recorded steps, and in memory), [`observers`] (the observers that apply the checks), [`outputs`] (the
 //! registry of built-in outputs a scene asks for), and this module, which drives them.
 
+pub mod as_laid;
 pub mod checkpoint;
 pub mod lay;
 pub mod observe;
@@ -217,7 +218,10 @@ pub fn run(
             file: statics.scene.file.clone(),
             message: format!("the carried state does not fit this scene: {what}"),
         })?,
-        None => dynamics::initial_state(&dm, &statics.u, &mut ws),
+        None => match &statics.scene.as_laid {
+            Some(al) => as_laid::start_state(&dm, &statics.u, (&statics.scene, al), &mut ws)?.0,
+            None => dynamics::initial_state(&dm, &statics.u, &mut ws),
+        },
     };
     let mut outputs = Outputs::build(&Setup {
         spec: &spec,

@@ -7,6 +7,7 @@
 //! ([`edit`]: `dynamic.time_step`, `mesh[*].element_length`) and build the edited scene from the
 //! document, never by editing text.
 
+pub mod as_laid;
 mod checks;
 mod dynamic;
 pub mod edit;

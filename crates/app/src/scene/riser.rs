@@ -58,6 +58,8 @@ pub struct RiserScene {
     pub size: RunSize,
     /// The pipe's installation (`[lay]`), if the scene is a lay.
     pub lay: Option<super::lay::LaySpec>,
+    /// The seabed a lay left, to start the dynamics on (`[as_laid]`).
+    pub as_laid: Option<super::as_laid::AsLaid>,
 }
 
 impl RiserScene {
@@ -132,6 +134,7 @@ impl RiserScene {
         };
         let size = run_size(file, raw)?;
         let lay = super::lay::lay_spec(file, raw)?;
+        let as_laid = super::as_laid::as_laid(file, raw, files)?;
         let model = line::line_model(file, raw, segments)?;
         let ends = line::ends(file, raw)?;
         check_solvers(file, raw)?;
@@ -194,6 +197,7 @@ impl RiserScene {
             dynamic,
             size,
             lay,
+            as_laid,
         })
     }
 }

@@ -553,6 +553,16 @@ pub struct RiserFile {
     pub attachment: Vec<AttachmentTable>,
     pub limits: Option<LimitsTable>,
     pub lay: Option<LayTable>,
+    pub as_laid: Option<AsLaidTable>,
+}
+
+/// `[as_laid]`: start the dynamics on the seabed a lay left (`laid-seabed.json` of a lay run).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct AsLaidTable {
+    pub file: String,
+    pub x_shift: Option<f64>,
 }
 
 /// `[limits]`: the largest run a scene may ask for. A run is sized before anything is built (elements

@@ -1,6 +1,7 @@
 //! `catena run` on a scene with `[lay]`: the pipe's installation. Writes `results.h5` (`/lay/`),
-//! `summary.json` (`lay`), `summary.txt` and `lay.png`, also when the lay stopped early
-//! (everything up to its last converged step).
+//! `summary.json` (`lay`), `summary.txt`, `lay.png` and `laid-seabed.json` (the seabed it left,
+//! for a following scene's `[as_laid]`), also when the lay stopped early (everything up to its
+//! last converged step).
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -60,7 +61,7 @@ pub fn run_lay(
     let mut t = t;
     let _ = writeln!(
         t,
-        "  wrote results.h5, summary.json, summary.txt and lay.png in {}",
+        "  wrote results.h5, summary.json, summary.txt, lay.png and laid-seabed.json in {}",
         out.display()
     );
     match &r.stop {
@@ -78,9 +79,15 @@ pub fn run_lay(
     }
 }
 
-/// The files of a lay.
+/// The files of a lay (`laid-seabed.json`: the seabed it left, for a following scene's
+/// `[as_laid]`).
 pub fn write_outputs(r: &LayRun, out: &Path) -> Result<(), AppError> {
     write_json(&out.join("summary.json"), &report::json(r))?;
+    let laid = serde_json::to_value(r.laid_seabed()).map_err(|e| AppError::Output {
+        path: out.join("laid-seabed.json"),
+        message: e.to_string(),
+    })?;
+    write_json(&out.join("laid-seabed.json"), &laid)?;
     let txt = out.join("summary.txt");
     std::fs::write(&txt, report::text(r)).map_err(|e| AppError::io(&txt, e))?;
     h5::write_lay(&out.join("results.h5"), r)?;

@@ -145,6 +145,8 @@ pub fn lay_with(
         wall_seconds: t0.elapsed().as_secs_f64(),
         lay_down,
         installation: l.check.take(),
+        histories: std::mem::take(&mut l.store.history),
+        friction: (std::mem::take(&mut l.store.friction), l.store.stride),
         stop,
         statics: st,
     })

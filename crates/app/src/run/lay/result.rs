@@ -6,10 +6,11 @@ use catena_fe::model::LineModel;
 use super::laid::{stats, LaidNodes, LayRecords, LaySummary};
 use crate::run::observe::Stop;
 use crate::run::statics::StaticRun;
+use crate::scene::as_laid::{LaidPoint, LaidSeabed};
 use crate::scene::lay::LaySpec;
 use crate::scene::riser::DynamicSpec;
 use catena_fe::statics::static_embedment_on;
-use catena_seabed::law::Seabed;
+use catena_seabed::law::{Seabed, SeabedHistory};
 
 /// A finished (or stopped) lay.
 #[derive(Debug)]
@@ -56,6 +57,10 @@ pub struct LayRun {
     pub lay_down: Option<LayDown>,
     /// The installation check, if the scene has a `[design_check]`.
     pub installation: Option<super::install::InstallationCheck>,
+    /// Every node's seabed history at the end.
+    pub histories: Vec<SeabedHistory>,
+    /// Every node's friction anchors at the end, and how many a node has (0 without friction).
+    pub friction: (Vec<f64>, usize),
 }
 
 /// What a lay-down did.
@@ -73,6 +78,33 @@ pub struct LayDown {
 }
 
 impl LayRun {
+    /// The seabed the lay left, for a following scene (`[as_laid]`): every node of the pipe at
+    /// rest, by increasing x.
+    pub fn laid_seabed(&self) -> LaidSeabed {
+        let (friction, stride) = (&self.friction.0, self.friction.1);
+        let n = &self.nodes;
+        let mut points: Vec<LaidPoint> = (0..self.full.nodes())
+            .filter(|&g| n.as_laid[g].is_finite())
+            .map(|g| LaidPoint {
+                kp: n.kp[g],
+                x: self.positions[g][0],
+                z: self.positions[g][1],
+                as_laid: n.as_laid[g],
+                history: self.histories[g],
+                friction: friction[stride * g..stride * (g + 1)].to_vec(),
+            })
+            .collect();
+        points.sort_by(|a, b| a.x.total_cmp(&b.x));
+        points.dedup_by(|b, a| b.x <= a.x);
+        LaidSeabed {
+            format: crate::scene::as_laid::FORMAT.into(),
+            catena_version: env!("CARGO_PKG_VERSION").into(),
+            scene_file: self.statics.scene.file.clone(),
+            contact_od: self.full.elements[n.pipe_end].contact_od,
+            points,
+        }
+    }
+
     /// x of the tower's exit at the start, m.
     pub fn positions_exit_x(&self) -> f64 {
         self.statics.placement.base[0] + self.statics.u[0]
