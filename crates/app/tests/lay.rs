@@ -428,6 +428,8 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
     assert!(same(&whole.nodes.max_contact, &again.nodes.max_contact));
     assert_eq!(whole.nodes.episodes, again.nodes.episodes);
     assert_eq!(whole.window, again.window);
+    assert!(!whole.frames.is_empty());
+    assert_eq!(whole.frames, again.frames, "the animation's frames differ");
     assert_eq!(
         whole.summary.paid_out.to_bits(),
         again.summary.paid_out.to_bits()

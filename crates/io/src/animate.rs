@@ -22,7 +22,10 @@
 //! **Frames.** At most `frames` frames, chosen evenly from the records (the first and the last
 //! always). The window of the touchdown zone spans the touchdown points' travel over the whole
 //! run, with half that travel (at least 30 `D` and 8 m) on the seabed's side and 10 `D` (at
-//! least 3 m) on the other, at least 20 m in all, fixed for the whole animation. Its heights are
+//! least 3 m) on the other, at least 20 m in all, fixed for the whole animation. A lay's
+//! (`Records::follow_touchdown`: its records are `/lay/frames`, every material point of the pipe a
+//! node) follows the touchdown instead: `max(60 D, 15 m)` behind it and `max(20 D, 5 m)` ahead,
+//! moving with it from frame to frame. Its heights are
 //! true metres, exaggerated so that the deepest trench and a pipe fill the lower fifth of the
 //! panel (the factor is printed on it).
 //!
@@ -85,6 +88,9 @@ pub struct Records {
     pub top_z: Vec<f64>,
     /// Outer diameter of each node's pipe, m.
     pub od: Vec<f64>,
+    /// The touchdown zone's window follows the touchdown from frame to frame (a lay, whose
+    /// touchdown travels the whole route) instead of spanning its travel over the run.
+    pub follow_touchdown: bool,
 }
 
 /// How to animate.
@@ -120,6 +126,9 @@ pub struct Report {
     pub bytes: u64,
     /// Seconds of the run the animation covers.
     pub seconds: f64,
+    /// The touchdown-zone panel's x range in the first frame and in the last, m (the same unless
+    /// the window follows the touchdown: a lay).
+    pub windows: [(f64, f64); 2],
 }
 
 impl Records {
@@ -142,6 +151,7 @@ impl Records {
             top_x: get("top_x")?,
             top_z: get("top_z")?,
             arc,
+            follow_touchdown: false,
         })
     }
 
@@ -292,6 +302,9 @@ pub fn animate(path: &Path, rec: &Records, opts: &Options) -> Result<Report, App
     let nr = rec.records();
     let picks = frame_records(nr, opts.frames);
     let mut geo = Geometry::new(rec);
+    if rec.follow_touchdown {
+        geo.follow(rec, 0);
+    }
     // The touchdown-zone panel's plotting area (the layout of `draw_frame`), for the exaggeration.
     let (pw, ph) = (w as f64 - 68.0, (h as f64 - 30.0) * 0.7 * 0.36 - 56.0);
     geo.exaggeration =
@@ -314,7 +327,8 @@ pub fn animate(path: &Path, rec: &Records, opts: &Options) -> Result<Report, App
     let mut trench = vec![0.0f64; n];
     let (mut m_lo, mut m_hi) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
     let mut next_record = 0;
-    for &k in &picks {
+    let mut windows = [geo.window; 2];
+    for (f, &k) in picks.iter().enumerate() {
         // The trench and the moment's envelope over every record up to this one.
         while next_record <= k {
             let p = rec.row(&rec.penetration, next_record);
@@ -326,6 +340,13 @@ pub fn animate(path: &Path, rec: &Records, opts: &Options) -> Result<Report, App
             }
             next_record += 1;
         }
+        if rec.follow_touchdown {
+            geo.follow(rec, k);
+        }
+        if f == 0 {
+            windows[0] = geo.window;
+        }
+        windows[1] = geo.window;
         draw_frame(
             &mut rgb,
             (w, h),
@@ -360,6 +381,7 @@ pub fn animate(path: &Path, rec: &Records, opts: &Options) -> Result<Report, App
         .map_err(|e| AppError::io(path, e))?
         .len();
     Ok(Report {
+        windows,
         frames: picks.len(),
         bytes,
         seconds: rec.time[nr - 1] - rec.time[0],
@@ -519,6 +541,26 @@ impl Geometry {
         ];
         g.moment_range = envelope_limits(rec, g.arc_window).unwrap_or((-1.0, 1.0));
         g
+    }
+
+    /// The touchdown zone's window at record `k` when it follows the touchdown (a lay): the same
+    /// width at every frame, `max(60 D, 15 m)` on the seabed's side of the touchdown point (the
+    /// trench forming) and `max(20 D, 5 m)` above it; the arc window of the nodes inside it.
+    fn follow(&mut self, rec: &Records, k: usize) {
+        let (x, p) = (rec.row(&rec.x, k), rec.row(&rec.penetration, k));
+        let n = rec.n();
+        let Some(td) = (0..n).find(|&i| p[i] > 0.0) else {
+            return;
+        };
+        let d = rec.od[td].max(1e-3);
+        let (a, b) = (x[td] - (60.0 * d).max(15.0), x[td] + (20.0 * d).max(5.0));
+        self.window = (a, b);
+        let inside: Vec<usize> = (0..n).filter(|&i| x[i] >= a && x[i] <= b).collect();
+        if let (Some(&i), Some(&j)) = (inside.first(), inside.last()) {
+            if j > i {
+                self.arc_window = (rec.arc[i], rec.arc[j]);
+            }
+        }
     }
 
     fn colour(&self, c: Colour) -> (f64, f64) {

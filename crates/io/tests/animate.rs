@@ -36,6 +36,7 @@ fn heave_records(duration: f64) -> Records {
         top_x: series("top_x"),
         top_z: series("top_z"),
         od,
+        follow_touchdown: false,
     }
 }
 
@@ -129,4 +130,52 @@ fn the_diameters_come_from_the_scene_or_line_od() {
     assert_eq!(od.len(), 7);
     assert!(od.iter().all(|&d| d == od[0] && d > 0.1));
     assert!(diameters("[line]\nlength = 3.0\n", "x.toml", 3).is_none());
+}
+
+/// A lay animates following its touchdown (`/lay/frames` of `results.h5`, every material point of
+/// the pipe a node): 1500 s of the calm 12-inch lay, its frames read back from the file it wrote, a
+/// GIF of every frame whose touchdown-zone window keeps its width and moves with the touchdown
+/// point from the first frame to the last (to within the window's placement by node, 1 m).
+#[test]
+fn a_lay_animates_following_its_touchdown() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let text = std::fs::read_to_string(root.join("cases/lay/jlay-12in-steady.toml"))
+        .expect("case")
+        .replace("duration = 6100.0", "duration = 1500.0");
+    let scene = catena::scene::riser::RiserScene::parse("lay.toml", &text, &catena::scene::NoFiles)
+        .expect("scene");
+    let lay = catena::run::lay::simulate_lay(scene, &mut |_| true).expect("lay");
+    let dir = std::env::temp_dir().join(format!("catena-animate-lay-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let h5 = dir.join("results.h5");
+    catena_io::h5::write_lay(&h5, &lay).expect("results.h5");
+    let rec = catena_io::h5::read_animation(&h5).expect("a lay's frames");
+    assert!(rec.follow_touchdown);
+    assert_eq!(rec.arc.len(), lay.full.nodes());
+    assert_eq!(rec.time, lay.frames.time);
+    let frames = rec.time.len();
+    let r = animate(
+        &dir.join("lay.gif"),
+        &rec,
+        &Options {
+            frames,
+            ..Options::default()
+        },
+    )
+    .expect("animates");
+    assert_eq!(r.frames, frames);
+    let td = |k: usize| {
+        let n = rec.arc.len();
+        let i = (0..n)
+            .find(|&i| rec.penetration[k * n + i] > 0.0)
+            .expect("a touchdown");
+        rec.x[k * n + i]
+    };
+    let travel = td(frames - 1) - td(0);
+    let [(a0, b0), (a1, b1)] = r.windows;
+    println!("touchdown travel {travel:.2} m; window {a0:.2}–{b0:.2} m to {a1:.2}–{b1:.2} m");
+    assert!(travel > 50.0, "the touchdown moved {travel} m");
+    assert!(((b1 - a1) - (b0 - a0)).abs() < 1e-9);
+    assert!(((a1 - a0) - travel).abs() < 1.0);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -47,8 +47,16 @@ pub fn animate(
         ..Default::default()
     };
     let r = catena_io::animate::animate(out, &rec, &opts)?;
+    let [(a0, b0), (a1, b1)] = r.windows;
+    let follows = if rec.follow_touchdown {
+        format!(
+            "; the touchdown zone follows the touchdown, x {a0:.1}–{b0:.1} m to {a1:.1}–{b1:.1} m"
+        )
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "animation: {} ({} frames of {:.1} s of the run, {:.0} kB, {:.1} s to draw)\n",
+        "animation: {} ({} frames of {:.1} s of the run, {:.0} kB, {:.1} s to draw{follows})\n",
         out.display(),
         r.frames,
         r.seconds,

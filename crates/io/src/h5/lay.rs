@@ -86,6 +86,7 @@ pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppErr
         attr(&g, "installation_check", c.spec.code.name()).map_err(&err)?;
         extra.push("lcc_utilisation");
     }
+    let framed = write_frames(&g, r).map_err(&err)?;
     let mut dims: Vec<(String, Vec<Option<&str>>)> = series[1..]
         .iter()
         .map(|(name, ..)| (format!("/lay/{name}"), vec![Some("/lay/time")]))
@@ -100,5 +101,73 @@ pub fn write_lay(path: &Path, r: &catena::run::lay::LayRun) -> Result<(), AppErr
             .iter()
             .map(|name| (format!("/lay/{name}"), vec![Some("/lay/kp")])),
     );
+    for (name, two) in framed {
+        let scales = if name == "contact_od" {
+            vec![Some("/lay/kp")]
+        } else if two {
+            vec![Some("/lay/frames/time"), Some("/lay/kp")]
+        } else {
+            vec![Some("/lay/frames/time")]
+        };
+        dims.push((format!("/lay/frames/{name}"), scales));
+    }
     dimension_scales(&f, &dims).map_err(&err)
+}
+
+/// `/lay/frames`, the animation's frames (`catena animate`): the whole pipe at every `every`-th
+/// record (frames × kp, single precision, shuffled and deflated), the exit's track and each node's
+/// contact diameter. The datasets written but `time`, and whether each is frames × kp.
+fn write_frames(
+    g: &hdf5::Group,
+    r: &catena::run::lay::LayRun,
+) -> hdf5::Result<Vec<(&'static str, bool)>> {
+    let fr = &r.frames;
+    if fr.is_empty() {
+        return Ok(Vec::new());
+    }
+    let fg = g.create_group("frames")?;
+    attr(
+        &fg,
+        "convention",
+        "the whole pipe at every `every`-th record: frames x kp; penetration of the invert positive \
+         down, negative above the mudline; seabed force and moment 0 off the solved window",
+    )?;
+    num_attr(&fg, "every", fr.every as f64)?;
+    vector(&fg, "time", &fr.time, "s")?;
+    let top_x: Vec<f64> = fr.exit.iter().map(|p| p[0]).collect();
+    let top_z: Vec<f64> = fr.exit.iter().map(|p| p[1]).collect();
+    vector(&fg, "top_x", &top_x, "m (the tower's exit)")?;
+    vector(&fg, "top_z", &top_z, "m (the tower's exit)")?;
+    let od: Vec<f64> = (0..r.full.nodes())
+        .map(|k| catena::run::lay::frames::contact_od(&r.full, k))
+        .collect();
+    vector(&fg, "contact_od", &od, "m")?;
+    let (nf, n) = (fr.len(), r.full.nodes());
+    let deflate = hdf5::filters::deflate_available();
+    for (name, data, units) in [
+        ("x", &fr.x, "m"),
+        ("z", &fr.z, "m"),
+        ("penetration", &fr.penetration, "m (positive down)"),
+        ("seabed_force", &fr.seabed_force, "N/m"),
+        ("bending_moment", &fr.moment, "N·m (negative in a sag bend)"),
+    ] {
+        let b = fg
+            .new_dataset::<f32>()
+            .shape((nf, n))
+            .chunk((nf.min(16), n));
+        let b = if deflate { b.shuffle().deflate(4) } else { b };
+        let ds = b.create(name)?;
+        ds.write_raw(data)?;
+        attr(&ds, "units", units)?;
+    }
+    Ok(vec![
+        ("top_x", false),
+        ("top_z", false),
+        ("contact_od", false),
+        ("x", true),
+        ("z", true),
+        ("penetration", true),
+        ("seabed_force", true),
+        ("bending_moment", true),
+    ])
 }

@@ -127,12 +127,31 @@ pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> 
         file: path.display().to_string(),
         message: m,
     };
+    let read = |name: &str| -> Result<Vec<f64>, AppError> {
+        file.dataset(name)
+            .and_then(|d| d.read_raw::<f64>())
+            .map_err(&err)
+    };
     if file.link_exists("lay") {
-        return Err(bad(
-            "a lay's results (/lay): the animation does not draw a lay yet (lay.png and /lay \
-             have its touchdown's track)"
-                .into(),
-        ));
+        // A lay: its frames (the whole pipe, every material point a node), the window following
+        // the touchdown.
+        if !file.link_exists("lay/frames") {
+            return Err(bad(
+                "a lay's results without /lay/frames (written by a build before the lay's \
+                 animation): lay.png and /lay have its touchdown's track"
+                    .into(),
+            ));
+        }
+        let mut rec = crate::animate::Records::from_named(
+            |name| match name {
+                "arc" => read("lay/arc"),
+                "bending_moment" => read("lay/frames/bending_moment"),
+                _ => read(&format!("lay/frames/{name}")),
+            },
+            |_| read("lay/frames/contact_od"),
+        )?;
+        rec.follow_touchdown = true;
+        return Ok(rec);
     }
     if !file.link_exists("dynamic") {
         return Err(bad(
@@ -141,11 +160,6 @@ pub fn read_animation(path: &Path) -> Result<crate::animate::Records, AppError> 
                 .into(),
         ));
     }
-    let read = |name: &str| -> Result<Vec<f64>, AppError> {
-        file.dataset(name)
-            .and_then(|d| d.read_raw::<f64>())
-            .map_err(&err)
-    };
     let scene: VarLenUnicode = file
         .attr("scene")
         .and_then(|a| a.read_scalar())

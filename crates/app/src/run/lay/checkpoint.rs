@@ -84,6 +84,10 @@ pub struct LayCheckpoint {
     /// The installation check's findings: each node's LCC, the largest LCC and DCC, the strain
     /// resistance (bits).
     pub check: Option<CheckFindings>,
+    /// The animation's frames so far (numbers that read back to the bit; none in a checkpoint of
+    /// a build before frames).
+    #[serde(default)]
+    pub frames: super::frames::LayFrames,
 }
 
 /// The installation check's findings in a checkpoint: each node's LCC, the largest LCC and DCC
@@ -213,6 +217,7 @@ impl super::Lay {
                     c.strain_resistance.to_bits(),
                 )
             }),
+            frames: self.frames.clone(),
         }
     }
 
@@ -268,6 +273,7 @@ impl super::Lay {
         self.nodes.episodes = cp.nodes.1.clone();
         self.nodes.last_mode = cp.nodes.2.clone();
         self.nodes.landed = cp.nodes.3.clone();
+        self.frames = cp.frames.clone();
         if let (Some(c), Some((lcc, lmax, dmax, sr))) = (self.check.as_mut(), &cp.check) {
             let four = |b: &[u64; 4]| {
                 (

@@ -131,11 +131,7 @@ impl LaidNodes {
         if g < self.pipe_end {
             return;
         }
-        let d = full
-            .elements
-            .get(g)
-            .unwrap_or(&full.elements[g - 1])
-            .contact_od;
+        let d = super::frames::contact_od(full, g);
         self.as_laid[g] = full
             .penetration(g, x, z)
             .map_or(f64::NAN, |p| p + 0.5 * (d - full.node_od[g]));

@@ -45,6 +45,7 @@
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
 pub mod checkpoint;
+pub mod frames;
 pub mod install;
 pub mod laid;
 mod mesh;
@@ -146,6 +147,7 @@ pub fn lay_with(
         lay_down,
         installation: l.check.take(),
         histories: std::mem::take(&mut l.store.history),
+        frames: std::mem::take(&mut l.frames),
         friction: (std::mem::take(&mut l.store.friction), l.store.stride),
         stop,
         statics: st,
@@ -205,6 +207,8 @@ pub struct Lay {
     stop_after: Option<u64>,
     /// The scene's text hash (checkpoints).
     scene_hash: String,
+    /// The frames for the animation.
+    frames: frames::LayFrames,
 }
 
 impl Lay {
@@ -311,6 +315,7 @@ impl Lay {
                     full.nodes(),
                 )
             });
+        let records = (dspec.duration / (dspec.dt * dspec.output_every as f64)).ceil() as usize + 1;
         let mut l = Self {
             file,
             d_top: full.elements[first].l0 * (1.0 + eps),
@@ -351,6 +356,7 @@ impl Lay {
             checkpoint_to: None,
             stop_after: None,
             scene_hash: crate::scene::text_hash(&scene.text),
+            frames: frames::LayFrames::new(records),
             full,
         };
         l.mark_positions();
@@ -737,6 +743,8 @@ impl Lay {
             .iter()
             .fold(0.0f64, |m, &x| m.min(x));
         r.sag_moment.push(sag);
+        let k = r.time.len() - 1;
+        self.frame(k);
     }
 
     /// The end: the window's State into the store, and the as-laid embedment of the nodes that lie

@@ -57,6 +57,8 @@ pub struct LayRun {
     pub lay_down: Option<LayDown>,
     /// The installation check, if the scene has a `[design_check]`.
     pub installation: Option<super::install::InstallationCheck>,
+    /// The frames for the animation ([`super::frames`]).
+    pub frames: super::frames::LayFrames,
     /// Every node's seabed history at the end.
     pub histories: Vec<SeabedHistory>,
     /// Every node's friction anchors at the end, and how many a node has (0 without friction).
