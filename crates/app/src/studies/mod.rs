@@ -12,6 +12,7 @@
 pub mod calibrate;
 pub mod convergence;
 pub mod fatigue_study;
+pub mod schedule;
 pub mod sequence;
 pub mod soil_test;
 pub mod strength;

@@ -28,7 +28,12 @@ pub fn fatigue(
     let (rs, reused) = resumable(
         &study.file,
         &study.storms,
-        jobs,
+        (
+            jobs,
+            |(_, scene): &(_, catena::scene::riser::RiserScene)| {
+                catena::studies::schedule::run_cost(scene)
+            },
+        ),
         |(storm, _)| dir.join(format!("{}.json", storm.id)),
         |(storm, scene), r: &StormResult| {
             r.scene_hash == catena::scene::text_hash(&scene.text)

@@ -58,20 +58,21 @@ fn warn(scene: &catena::scene::riser::RiserScene) {
     }
 }
 
-/// Runs `items` on `jobs` threads, each result written atomically to its JSON file (`path_of`) as
+/// Runs `items` on `jobs` threads, the most expensive first by `cost`
+/// ([`catena::studies::schedule`]), each result written atomically to its JSON file (`path_of`) as
 /// it finishes and `done` told (with how many are done); an item whose file holds a result that
 /// `reuse` accepts is taken from there and not run. Returns the results in the items' order and
 /// how many were reused. (The fatigue and the strength studies: a rerun resumes.)
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwned + Send>(
     file: &str,
     items: &[I],
-    jobs: usize,
+    (jobs, cost): (usize, impl Fn(&I) -> f64),
     path_of: impl Fn(&I) -> PathBuf + Sync,
     reuse: impl Fn(&I, &R) -> bool + Sync,
     run: impl Fn(&I) -> Result<R, AppError> + Sync,
     done: impl Fn(&I, &R, usize) + Sync,
 ) -> Result<(Vec<R>, usize), AppError> {
-    use rayon::prelude::*;
     let count = std::sync::atomic::AtomicUsize::new(0);
     let one = |item: &I| -> Result<(R, bool), AppError> {
         let path = path_of(item);
@@ -95,15 +96,9 @@ pub(crate) fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwn
         done(item, &r, k);
         Ok((r, false))
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.max(1))
-        .build()
-        .map_err(|e| AppError::Run {
-            file: file.to_string(),
-            message: format!("--jobs: cannot start {jobs} threads: {e}"),
-        })?;
+    let _ = file;
     let results: Vec<Result<(R, bool), AppError>> =
-        pool.install(|| items.par_iter().map(one).collect());
+        catena::studies::schedule::by_cost(items, jobs, cost, one);
     let mut out = Vec::with_capacity(items.len());
     let mut reused = 0;
     for r in results {

@@ -116,7 +116,8 @@ fn as_laid(
     let (rs, _) = resumable(
         &seq.file,
         &ks,
-        threads,
+        // The visits are the storms' of the table at the same record: their order is kept.
+        (threads, |_: &usize| 1.0),
         |k| dir.join(format!("visit-{k:04}.json")),
         |&k, r: &VisitResult| {
             r.scene_hash == seq.hash_of(k) && r.error.is_none() && r.visit == seq.visits[k].0

@@ -30,7 +30,9 @@ pub fn strength(
     let (rs, reused) = resumable(
         &study.file,
         &study.runs,
-        jobs,
+        (jobs, |run: &catena::studies::strength::StrengthRun| {
+            catena::studies::schedule::run_cost(&run.scene)
+        }),
         |run| dir.join(format!("{}-{}.json", run.storm.id, run.seed)),
         |run, r: &RunResult| {
             r.scene_hash == catena::scene::text_hash(&run.scene.text)

@@ -64,7 +64,6 @@ fn shard_of(file: &str, o: &SweepOptions) -> Result<(usize, usize), AppError> {
 /// when this is the only shard or with `--merge`, writes `sweep.csv` and `sweep.json`.
 pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
     use catena::studies::sweep::{self, Plan, RunResult};
-    use rayon::prelude::*;
     let plan = Plan::read(plan_path)?;
     let runs = plan.runs();
     let mut text = String::new();
@@ -94,39 +93,38 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
             runs.iter().filter(|r| r.index % shards == shard).collect();
         let n = mine.len();
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(o.jobs.max(1))
-            .build()
-            .map_err(|e| AppError::Run {
-                file: plan.file.clone(),
-                message: format!("--jobs: cannot start {} threads: {e}", o.jobs),
-            })?;
-        let ran: Vec<Result<bool, AppError>> = pool.install(|| {
-            mine.par_iter()
-                .map(|spec| {
-                    let hash = sweep::run_hash(spec);
-                    if read(&hash).is_some_and(|r| r.error.is_none()) {
-                        done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                        return Ok(false);
-                    }
-                    let r = run_and_keep(&dir, &hash, spec)?;
-                    let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-                    if o.progress {
-                        let el = t0.elapsed().as_secs_f64();
-                        eprintln!(
-                            "  {} ({}): {:.1} s{}; {k}/{n} done, {:.0} s elapsed, about {:.0} s left",
-                            spec.id,
-                            plan.describe(spec.point),
-                            r.wall_seconds,
-                            r.error.as_ref().map_or(String::new(), |e| format!(", FAILED: {e}")),
-                            el,
-                            el / k as f64 * (n - k) as f64
-                        );
-                    }
-                    Ok(true)
-                })
-                .collect()
-        });
+        // The most expensive runs first (`catena::studies::schedule`); a run whose scene failed
+        // to build costs nothing (it fails at once).
+        let cost = |spec: &&sweep::RunSpec| {
+            spec.scene
+                .as_ref()
+                .map_or(0.0, catena::studies::schedule::run_cost)
+        };
+        let ran: Vec<Result<bool, AppError>> =
+            catena::studies::schedule::by_cost(&mine, o.jobs, cost, |spec| {
+                let hash = sweep::run_hash(spec);
+                if read(&hash).is_some_and(|r| r.error.is_none()) {
+                    done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                    return Ok(false);
+                }
+                let r = run_and_keep(&dir, &hash, spec)?;
+                let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                if o.progress {
+                    let el = t0.elapsed().as_secs_f64();
+                    eprintln!(
+                        "  {} ({}): {:.1} s{}; {k}/{n} done, {:.0} s elapsed, about {:.0} s left",
+                        spec.id,
+                        plan.describe(spec.point),
+                        r.wall_seconds,
+                        r.error
+                            .as_ref()
+                            .map_or(String::new(), |e| format!(", FAILED: {e}")),
+                        el,
+                        el / k as f64 * (n - k) as f64
+                    );
+                }
+                Ok(true)
+            });
         let mut fresh = 0;
         for r in ran {
             fresh += usize::from(r?);
