@@ -160,10 +160,20 @@ def animate(results, out, frames: int = 120, fps: float = 12.0, colour: str = "p
     ``"seabed_force"``, N/m), the bending moment along the arc beneath (N*m), time and top motion.
 
     ``results`` is the path of a ``results.h5`` or a :class:`Results` of :func:`run`; at most
-    ``frames`` frames, chosen evenly from the records, at ``fps`` frames a second. Returns
+    ``frames`` frames, chosen evenly from the records, at ``fps`` frames a second. A lay's results
+    (``lay/frames/...``) animate with the touchdown zone following the touchdown. Returns
     ``{"frames", "bytes", "seconds"}``.
     """
-    if isinstance(results, Results):
+    lay_names = {"arc": "lay/arc", "time": "lay/frames/time", "x": "lay/frames/x",
+                 "z": "lay/frames/z", "penetration": "lay/frames/penetration",
+                 "seabed_force": "lay/frames/seabed_force",
+                 "bending_moment": "lay/frames/bending_moment", "top_x": "lay/frames/top_x",
+                 "top_z": "lay/frames/top_z", "outer_diameter": "lay/frames/contact_od"}
+    follow = False
+    if isinstance(results, Results) and "lay/frames/x" in results:
+        arrays = {k: results[v] for k, v in lay_names.items()}
+        follow = True
+    elif isinstance(results, Results):
         arrays = results
     else:
         try:
@@ -174,6 +184,10 @@ def animate(results, out, frames: int = 120, fps: float = 12.0, colour: str = "p
                 "Results of catena.run"
             ) from e
         with h5py.File(results, "r") as f:
+            if "lay/frames" in f:
+                arrays = {k: f[v][...] for k, v in lay_names.items()}
+                follow = True
+                return _animate(arrays, out, frames, fps, colour, follow)
             d = f["dynamic"]
             arrays = {name: d[name][...] for name in
                       ["arc", "time", "x", "z", "penetration", "seabed_force", "bending_moment",
@@ -186,6 +200,11 @@ def animate(results, out, frames: int = 120, fps: float = 12.0, colour: str = "p
             if od is None or od.size != arrays["arc"].size:
                 od = _np.array(_catena.node_diameters(text, case, arrays["arc"].size))
             arrays["outer_diameter"] = od
+    return _animate(arrays, out, frames, fps, colour, follow)
+
+
+def _animate(arrays, out, frames, fps, colour, follow):
     raw = {k: (_np.ascontiguousarray(v, dtype="<f8").tobytes(), list(_np.shape(v)))
            for k, v in arrays.items() if isinstance(v, _np.ndarray)}
-    return _json.loads(_catena.animate_arrays(raw, str(out), int(frames), float(fps), colour))
+    return _json.loads(_catena.animate_arrays(raw, str(out), int(frames), float(fps), colour,
+                                              bool(follow)))

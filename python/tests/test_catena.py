@@ -391,6 +391,15 @@ def test_a_lay_from_python_is_the_command_s(tmp_path):
         for name in ["time", "paid_out", "top_tension", "touchdown_x", "kp", "as_laid_embedment",
                      "max_contact_force", "episodes"]:
             np.testing.assert_array_equal(r[f"lay/{name}"], f["lay"][name][:])
+        # The animation's frames: single precision in the file, the same values from Python.
+        for name in ["time", "top_x", "x", "penetration", "bending_moment"]:
+            np.testing.assert_array_equal(r[f"lay/frames/{name}"],
+                                          f["lay/frames"][name][:].astype(np.float64))
+    # A lay animates from Python too, its touchdown zone following the touchdown.
+    a = catena.animate(r, tmp_path / "lay.gif", frames=12)
+    b = catena.animate(out / "results.h5", tmp_path / "lay-file.gif", frames=12)
+    assert a["frames"] == b["frames"] == 12
+    assert (tmp_path / "lay.gif").read_bytes() == (tmp_path / "lay-file.gif").read_bytes()
     summary = json.loads((out / "summary.json").read_text())["lay"]
     assert r.summary["lay"]["lay_factor"] == summary["lay_factor"]
     assert r.summary["lay"]["as_laid_embedment"] == summary["as_laid_embedment"]

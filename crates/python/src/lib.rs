@@ -377,6 +377,28 @@ fn run_lay<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>
     if let Some(c) = &r.installation {
         arrays.set_item("lay/lcc_utilisation", array(py, &c.lcc_of_node, vec![nn]))?;
     }
+    // The animation's frames, as `/lay/frames` (single precision there, the same values here).
+    let f = &r.frames;
+    let nf = f.len();
+    let top_x: Vec<f64> = f.exit.iter().map(|p| p[0]).collect();
+    let top_z: Vec<f64> = f.exit.iter().map(|p| p[1]).collect();
+    let od: Vec<f64> = (0..nn)
+        .map(|k| catena::run::lay::frames::contact_od(&r.full, k))
+        .collect();
+    arrays.set_item("lay/frames/time", array(py, &f.time, vec![nf]))?;
+    arrays.set_item("lay/frames/top_x", array(py, &top_x, vec![nf]))?;
+    arrays.set_item("lay/frames/top_z", array(py, &top_z, vec![nf]))?;
+    arrays.set_item("lay/frames/contact_od", array(py, &od, vec![nn]))?;
+    for (name, v) in [
+        ("x", &f.x),
+        ("z", &f.z),
+        ("penetration", &f.penetration),
+        ("seabed_force", &f.seabed_force),
+        ("bending_moment", &f.moment),
+    ] {
+        let wide: Vec<f64> = v.iter().map(|&x| f64::from(x)).collect();
+        arrays.set_item(format!("lay/frames/{name}"), array(py, &wide, vec![nf, nn]))?;
+    }
     let out = PyDict::new(py);
     out.set_item("arrays", arrays)?;
     out.set_item("summary", catena_io::lay::json(&r).to_string())?;
@@ -855,8 +877,10 @@ fn sweep_table(
 
 /// The animated touchdown zone (`catena animate`) from a run's arrays (`{name: (bytes, shape)}`:
 /// `arc`, `time`, `x`, `z`, `penetration`, `seabed_force`, `bending_moment`, `top_x`, `top_z`,
-/// `outer_diameter`): `{"frames", "bytes", "seconds"}` as JSON text.
+/// `outer_diameter`): `{"frames", "bytes", "seconds"}` as JSON text; `follow`: the touchdown
+/// zone follows the touchdown (a lay's frames).
 #[pyfunction]
+#[pyo3(signature = (arrays, out, frames, fps, colour, follow = false))]
 fn animate_arrays(
     py: Python<'_>,
     arrays: &Bound<'_, PyDict>,
@@ -864,6 +888,7 @@ fn animate_arrays(
     frames: usize,
     fps: f64,
     colour: &str,
+    follow: bool,
 ) -> PyResult<String> {
     let get = |name: &str| -> PyResult<Vec<f64>> {
         let item = arrays
@@ -885,7 +910,9 @@ fn animate_arrays(
             "animate: expected frames >= 2 and 0 < fps <= 50, got {frames} and {fps}"
         )));
     }
-    let rec = catena_io::animate::Records::from_named(|name| get(name), |_| get("outer_diameter"))?;
+    let mut rec =
+        catena_io::animate::Records::from_named(|name| get(name), |_| get("outer_diameter"))?;
+    rec.follow_touchdown = follow;
     let opts = catena_io::animate::Options {
         frames,
         fps,
