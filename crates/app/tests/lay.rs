@@ -464,6 +464,7 @@ fn the_tower_s_angle_and_hinge_lay() {
     let (th, mh) = last(&hinged);
     println!("clamped {tc:.1} N, {mc:.1} N·m; hinged {th:.1} N, {mh:.1} N·m");
     assert!(hinged.statics.results.moment[0].abs() < 1.0);
+    assert!(clamped.warnings.is_empty() && hinged.warnings.is_empty());
     assert!((th / tc - 1.0).abs() < 1e-3 && (mh / mc - 1.0).abs() < 1e-3);
     for keys in [
         "tower_angle_deg = 18.0",
@@ -482,6 +483,11 @@ fn the_tower_s_angle_and_hinge_lay() {
             .fold(0.0, f64::max);
         println!("{keys:?}: top moment {m0:.0} N·m, start within {start:.2e} of the statics' tension, {} steps, {} cuts", r.steps, r.cuts);
         assert!(m0.abs() > 1e5, "the tilted tower holds a moment");
+        assert!(
+            r.warnings.iter().any(|w| w.contains("element length")),
+            "{:?}",
+            r.warnings
+        );
         assert!(start < 3e-3);
         assert!(*r.records.time.last().expect("records") > 599.0);
     }

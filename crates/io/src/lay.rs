@@ -19,6 +19,7 @@ pub fn json(r: &LayRun) -> Value {
         "paid_out": num(s.paid_out),
         "vessel_travel": num(s.vessel_travel),
         "tower_angle_deg": num(r.tower_angle.to_degrees()),
+        "warnings": r.warnings,
         "target_tension": r.target_tension.map(num),
         "steady_nodes": s.steady_nodes,
         "as_laid_embedment": {
@@ -74,6 +75,9 @@ pub fn text(r: &LayRun) -> String {
     let mm = |z: f64| z * 1e3;
     let mut t = String::new();
     let _ = writeln!(t, "{}", r.statics.scene.title);
+    for w in &r.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
     let _ = writeln!(
         t,
         "  lay: {:.1} m paid out, vessel {:.1} m along the route in {:.1} s; tower {:.2}° from the vertical",

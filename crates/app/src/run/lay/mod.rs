@@ -120,6 +120,7 @@ pub fn lay_with(
     let stop = l.run_until(l.dspec.duration, on_step)?;
     l.finish();
     let summary = l.summary(&st);
+    let warnings = mesh::tower_warning(&st).into_iter().collect();
     let lay_down = l.left_tower.map(|(t, kp)| LayDown {
         left_tower: t,
         kp_touchdown: kp,
@@ -146,6 +147,7 @@ pub fn lay_with(
         wall_seconds: t0.elapsed().as_secs_f64(),
         lay_down,
         installation: l.check.take(),
+        warnings,
         histories: std::mem::take(&mut l.store.history),
         frames: std::mem::take(&mut l.frames),
         friction: (std::mem::take(&mut l.store.friction), l.store.stride),

@@ -57,6 +57,8 @@ pub struct LayRun {
     pub lay_down: Option<LayDown>,
     /// The installation check, if the scene has a `[design_check]`.
     pub installation: Option<super::install::InstallationCheck>,
+    /// What the user should know about this lay (a tower holding a moment at the top).
+    pub warnings: Vec<String>,
     /// The frames for the animation ([`super::frames`]).
     pub frames: super::frames::LayFrames,
     /// Every node's seabed history at the end.
