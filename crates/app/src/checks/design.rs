@@ -132,6 +132,19 @@ pub enum Term {
 }
 
 impl Term {
+    /// The largest of a DNV criterion's three terms (ties: bending, then tension).
+    fn largest(bending: f64, tension: f64, pressure: f64) -> Self {
+        if bending >= tension && bending >= pressure {
+            Term::Bending
+        } else if tension >= pressure {
+            Term::Tension
+        } else {
+            Term::Pressure
+        }
+    }
+}
+
+impl Term {
     /// The name used in outputs.
     pub fn name(self) -> &'static str {
         match self {
@@ -387,14 +400,10 @@ impl Resistance {
             g * (-dp) / self.pc
         };
         let value = (bending + tension).powi(2) + pressure.powi(2);
-        let term = if bending >= tension && bending >= pressure {
-            Term::Bending
-        } else if tension >= pressure {
-            Term::Tension
-        } else {
-            Term::Pressure
-        };
-        Utilisation { value, term }
+        Utilisation {
+            value,
+            term: Term::largest(bending, tension, pressure),
+        }
     }
 
     /// DNV-ST-F101's design compressive strain resistance `ε_c/γ_ε` at the pressures `p_ld`
@@ -435,14 +444,10 @@ impl Resistance {
             (md.abs() / mk, -dp / self.pc)
         };
         let value = (g * (bending + tension)).powi(2) + (g * pressure).powi(2);
-        let term = if bending >= tension && bending >= pressure {
-            Term::Bending
-        } else if tension >= pressure {
-            Term::Tension
-        } else {
-            Term::Pressure
-        };
-        Utilisation { value, term }
+        Utilisation {
+            value,
+            term: Term::largest(bending, tension, pressure),
+        }
     }
 
     /// The API STD 2RD utilisation at the pressures `p_ld`, `p_e` (Pa) for the wall tension `tw`

@@ -26,7 +26,6 @@ pub fn fatigue(
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
     let n = study.storms.len();
     let (rs, reused) = resumable(
-        &study.file,
         &study.storms,
         (
             jobs,

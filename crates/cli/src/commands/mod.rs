@@ -65,7 +65,6 @@ fn warn(scene: &catena::scene::riser::RiserScene) {
 /// how many were reused. (The fatigue and the strength studies: a rerun resumes.)
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwned + Send>(
-    file: &str,
     items: &[I],
     (jobs, cost): (usize, impl Fn(&I) -> f64),
     path_of: impl Fn(&I) -> PathBuf + Sync,
@@ -96,7 +95,6 @@ pub(crate) fn resumable<I: Sync, R: serde::Serialize + serde::de::DeserializeOwn
         done(item, &r, k);
         Ok((r, false))
     };
-    let _ = file;
     let results: Vec<Result<(R, bool), AppError>> =
         catena::studies::schedule::by_cost(items, jobs, cost, one);
     let mut out = Vec::with_capacity(items.len());

@@ -114,7 +114,6 @@ fn as_laid(
     let ks: Vec<usize> = (0..seq.visits.len()).collect();
     let n = ks.len();
     let (rs, _) = resumable(
-        &seq.file,
         &ks,
         // The visits are the storms' of the table at the same record: their order is kept.
         (threads, |_: &usize| 1.0),

@@ -28,7 +28,6 @@ pub fn strength(
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
     let n = study.runs.len();
     let (rs, reused) = resumable(
-        &study.file,
         &study.runs,
         (jobs, |run: &catena::studies::strength::StrengthRun| {
             catena::studies::schedule::run_cost(&run.scene)
