@@ -302,6 +302,53 @@ fn a_lay_down_lands_the_pipe_end() {
     assert!(s.sag_moment_max < 1.05 * -r.statics.summary.max_sag_moment.0);
 }
 
+/// A lay-down holding station (`cases/lay/laydown-12in-station.toml`: `[lay.wire] station = true`,
+/// the station height `h` by default a quarter of the pipe's bending length `(EI/W')^(1/3)`, 10.3 m):
+/// the vessel keeps the lay's speed when the pipe's end leaves the tower, comes to rest as the end
+/// comes down from `2h` to `h` above the mudline (the frame after it stops: the end within 5 % of
+/// `h` or below it) and holds station to the bit until the end rests on the seabed.
+#[test]
+fn a_station_lay_down_holds_the_vessel_until_the_end_rests() {
+    let r = lay_of(&case("laydown-12in-station.toml"));
+    let d = r.lay_down.expect("a lay-down");
+    let rested = d.rested.expect("the pipe's end rests");
+    let rec = &r.records;
+    let n = rec.time.len();
+    let x_last = rec.vessel_x[n - 1];
+    let k = (0..n)
+        .rev()
+        .take_while(|&k| rec.vessel_x[k] == x_last)
+        .last()
+        .expect("records");
+    let t_stop = rec.time[k];
+    let i = rec
+        .time
+        .iter()
+        .position(|&t| t > d.left_tower)
+        .expect("left");
+    let v_left = (rec.vessel_x[i + 1] - rec.vessel_x[i]) / (rec.time[i + 1] - rec.time[i]);
+    let pipe = &r.statics.model.elements[0];
+    let h = 0.25 * (pipe.section.ei / pipe.weight).cbrt();
+    let f = &r.frames;
+    let nodes = r.full.nodes();
+    let end = 250; // the wire's 250 elements of 1 m lie above the pipe's end
+    let j = f.time.iter().position(|&t| t >= t_stop).expect("a frame");
+    let above = -f64::from(f.penetration[j * nodes + end]) + 0.5 * pipe.contact_od;
+    println!(
+        "left the tower at {:.1} s at {v_left:.4} m/s; the vessel stopped at {t_stop:.1} s \
+         (x = {x_last:.3} m), the end {above:.2} m above the mudline at {:.1} s (h = {h:.2} m); \
+         rested at {rested:.1} s",
+        d.left_tower, f.time[j]
+    );
+    assert!(
+        (v_left - r.spec.speed).abs() < 1e-9 * r.spec.speed,
+        "{v_left}"
+    );
+    assert!(t_stop > d.left_tower + 600.0, "stopped at {t_stop}");
+    assert!(rested > t_stop + 300.0, "held {} s", rested - t_stop);
+    assert!(above < 1.05 * h && above > 0.0, "{above} m above, h = {h}");
+}
+
 /// The installation check (`[design_check] code = "dnv-st-f101"`) in a calm steady lay: the
 /// environmental load effects are nil, so the largest load-controlled utilisation of the free span
 /// is the statics' own, `M_d = γ_F·M`, `T_ed = γ_F·T` at the node where F101's criterion is largest

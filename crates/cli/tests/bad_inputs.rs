@@ -546,6 +546,20 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "lay.wire",
     ),
     (
+        "a station height with the vessel keeping its speed",
+        "lay/laydown-12in",
+        "element_length = 1.0          # m [A]\n\n[dynamic]",
+        "element_length = 1.0\nstation_height = 10.0\n\n[dynamic]",
+        "lay.wire.station_height",
+    ),
+    (
+        "a negative station height",
+        "lay/laydown-12in-station",
+        "station = true ",
+        "station_height = -5.0\nstation = true ",
+        "lay.wire.station_height",
+    ),
+    (
         "a laid seabed under a lay",
         "lay/jlay-12in-steady",
         "[lay]",

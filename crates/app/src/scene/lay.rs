@@ -88,9 +88,14 @@ pub struct Wire {
     pub mass: f64,
     /// Element length, m.
     pub element_length: f64,
-    /// Whether the vessel holds station while the wire is paid out (else it keeps the lay's speed,
-    /// as lay-downs are done: the sag bend keeps its tension).
+    /// Whether the vessel comes to rest and holds station for the last of the lowering (else it
+    /// keeps the lay's speed until the pipe's end rests, as lay-downs are done: the sag bend keeps
+    /// its tension).
     pub station: bool,
+    /// With `station`: the pipe end's height above the mudline, m, below which the vessel holds
+    /// station; it slows from twice this height (`None`: a quarter of the pipe's bending length
+    /// `λ = (EI/W')^(1/3)`, set by the run).
+    pub station_height: Option<f64>,
 }
 
 /// Default `time_constant` of a tensioner, s.
@@ -341,6 +346,15 @@ fn lay_down(file: &str, l: &LayTable) -> Result<Option<Wire>, SceneError> {
             "an element length in m",
         )?,
         station: w.station,
+        station_height: match (w.station_height, w.station) {
+            (None, _) => None,
+            (Some(h), true) => Some(p("station_height", h, "a height above the mudline in m")?),
+            (Some(_), false) => return Err(invalid(
+                file,
+                "lay.wire.station_height",
+                "`station = true` with a station height (the vessel keeps its speed without it)",
+            )),
+        },
     }))
 }
 

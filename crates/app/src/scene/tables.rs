@@ -516,6 +516,7 @@ pub struct WireTable {
     pub element_length: Option<f64>,
     #[serde(default)]
     pub station: bool,
+    pub station_height: Option<f64>,
 }
 
 /// A riser scene file as written.

@@ -52,8 +52,8 @@ mod mesh;
 mod result;
 pub mod window;
 
-use mesh::material_mesh;
 pub use mesh::statics_scene;
+use mesh::{material_mesh, station_height};
 pub use result::{LayDown, LayProgress, LayRun};
 
 use std::time::Instant;
@@ -195,6 +195,8 @@ pub struct Lay {
     taken_back: u64,
     /// The pipe's last end's node (0 without a lay-down wire above it).
     pipe_end: usize,
+    /// A lay-down's station height, m ([`LayRun::vessel_speed_at`]).
+    station_height: f64,
     /// When the pipe's end left the tower, and the touchdown's KP then (a lay-down).
     left_tower: Option<(f64, f64)>,
     /// When the pipe's end came to rest on the seabed (the lay-down's end).
@@ -242,10 +244,7 @@ impl Lay {
         let theta = theta0
             + ((down - theta0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
                 - std::f64::consts::PI);
-        let exit0 = [
-            st.placement.base[0] + st.u[0],
-            st.placement.base[1] + st.u[1],
-        ];
+        let exit0: [f64; 2] = std::array::from_fn(|c| st.placement.base[c] + st.u[c]);
         let tension = st.results.tension[0];
         let eps = tension / top.section.ea;
         // The base: the tower's nodes along the tower above the exit (each element stretched by
@@ -322,6 +321,7 @@ impl Lay {
             file,
             d_top: full.elements[first].l0 * (1.0 + eps),
             rate: 0.0,
+            station_height: station_height(&full, pipe_end, &spec),
             spec,
             dspec,
             base,
@@ -420,12 +420,20 @@ impl Lay {
     }
 
     /// The vessel's speed at `t`: the lay's; in a lay-down with `[lay.wire] station = true`,
-    /// brought to rest over the ramp's time once the pipe's end has left the tower.
+    /// `V·r((z_e − h)/h)` once the pipe's end has left the tower, with `r` the quintic ramp, `z_e`
+    /// the end's height above the mudline in the last converged state (explicit, like the
+    /// tensioner's tension) and `h` the station height: the vessel slows as the end comes down
+    /// from `2h` to `h` and holds station below `h` until the end rests.
     fn vessel_speed_at(&self, t: f64) -> f64 {
         let v = self.speed_at(t);
         match (self.left_tower, self.spec.lay_down) {
-            (Some((t0, _)), Some(w)) if w.station => {
-                v * (1.0 - catena_fe::motion::quintic_ramp(t - t0, self.spec.ramp).0)
+            (Some(_), Some(w))
+                if w.station && (self.first..=self.last).contains(&self.pipe_end) =>
+            {
+                let h = self.station_height;
+                let [x, z] = self.at_window(self.pipe_end - self.first);
+                let above = z - self.full.mudline_at(x).0;
+                v * catena_fe::motion::quintic_ramp(above - h, h).0
             }
             _ => v,
         }
