@@ -111,6 +111,13 @@ pub struct Assembler {
 }
 
 impl Assembler {
+    /// Takes element `e`'s rest length and stiffness from the Model again (after
+    /// [`LineModel::set_top_rest_length`]).
+    pub fn element_changed(&mut self, model: &LineModel, e: usize) {
+        let el = &model.elements[e];
+        self.stiffness_per_length[e] = (el.l0, el.section.ea / el.l0, el.section.ei / el.l0);
+    }
+
     /// Builds the pattern and the symbolic factorisation for the Model.
     pub fn new(model: &LineModel) -> Result<Self, SolveError> {
         let ne = model.elements.len();

@@ -539,6 +539,37 @@ impl LineModel {
         m
     }
 
+    /// Sets the top element's rest length to `l0` (m), with what follows from it: the nodes' arc
+    /// lengths, the two top nodes' tributary lengths and dead loads. A lay's top element runs
+    /// from the tower's exit to the first free node, its rest length growing with the payout
+    /// (`catena::run::lay`); a Workspace built before is told with
+    /// [`crate::dynamics::DynWorkspace::top_rest_length_changed`]. A Model built with `l0` is the
+    /// same to the bit.
+    pub fn set_top_rest_length(&mut self, l0: f64) {
+        self.elements[0].l0 = l0;
+        for (e, el) in self.elements.iter().enumerate() {
+            self.arc[e + 1] = self.arc[e] + el.l0;
+        }
+        // As `from_elements` sums them: node 0 has element 0's half, node 1 both halves.
+        self.tributary[0] = 0.5 * l0;
+        self.tributary[1] = if self.elements.len() > 1 {
+            0.5 * l0 + 0.5 * self.elements[1].l0
+        } else {
+            0.5 * l0
+        };
+        let half = |e: &Element| -0.5 * e.weight * e.l0;
+        let top = half(&self.elements[0]);
+        self.dead_load[1] = top;
+        self.dead_load[4] = if self.elements.len() > 1 {
+            top + half(&self.elements[1])
+        } else {
+            top
+        };
+        for a in self.attachments.iter().filter(|a| a.node < 2) {
+            self.dead_load[3 * a.node + 1] -= a.weight;
+        }
+    }
+
     /// The part of the line from node `first` to node `last` (`first < last`) as a line of its
     /// own: the same elements, held at `last` (position and rotation: a node frozen where it
     /// lies), `top` at `first`, with `flexjoint` there if given. Arc lengths start at 0 at

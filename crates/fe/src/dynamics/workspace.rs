@@ -128,6 +128,28 @@ impl DynWorkspace {
         })
     }
 
+    /// Takes the top element's new rest length from the Model
+    /// ([`LineModel::set_top_rest_length`]): its stiffness and the two top nodes' own lumped mass,
+    /// as [`DynWorkspace::new`] would have them (no allocation).
+    pub fn top_rest_length_changed(&mut self, line: &LineModel) {
+        self.asm.element_changed(line, 0);
+        for i in 0..2.min(line.nodes()) {
+            let mut m = [0.0; 4];
+            for el in line.elements[i.saturating_sub(1)..(i + 1).min(line.elements.len())].iter() {
+                let half = 0.5 * el.mass * el.l0;
+                m[0] += half;
+                m[2] += half;
+                m[3] += half * el.od * el.od / 8.0;
+            }
+            for a in line.attachments.iter().filter(|a| a.node == i) {
+                m[0] += a.mass;
+                m[2] += a.mass;
+            }
+            self.structural_mass[i] = m;
+        }
+        self.reference = crate::statics::residual_reference(line);
+    }
+
     /// Drops the factorisation kept for reuse: the next step starts with a full Newton iteration.
     pub fn forget_factorisation(&mut self) {
         self.factored_dt = None;

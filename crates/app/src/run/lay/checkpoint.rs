@@ -290,10 +290,11 @@ impl super::Lay {
         // The window's Model and Workspace, its State and the solver's memory.
         let (first, last) = cp.window;
         (self.first, self.last) = (first, last);
+        let top_l0 = self.top_rest_length(first);
         self.dm = super::window::model(
             &self.full,
             &self.base,
-            (first, last),
+            (first, last, top_l0),
             (self.spec.tower, self.theta, first < self.pipe_end),
             &self.dspec,
         );

@@ -70,10 +70,7 @@ impl Lay {
             return;
         }
         let top = self.at_window(0);
-        let exit = [
-            top[0] - self.d_top * self.up[0],
-            top[1] - self.d_top * self.up[1],
-        ];
+        let exit = self.exit_point();
         self.frames.time.push(self.state.t);
         self.frames.exit.push(exit);
         for g in 0..self.full.nodes() {

@@ -45,6 +45,7 @@
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
 pub mod checkpoint;
+mod exit;
 pub mod frames;
 pub mod install;
 pub mod laid;
@@ -120,7 +121,7 @@ pub fn lay_with(
     let stop = l.run_until(l.dspec.duration, on_step)?;
     l.finish();
     let summary = l.summary(&st);
-    let warnings = mesh::tower_warning(&st).into_iter().collect();
+    let warnings = Vec::new();
     let lay_down = l.left_tower.map(|(t, kp)| LayDown {
         left_tower: t,
         kp_touchdown: kp,
@@ -195,6 +196,9 @@ pub struct Lay {
     taken_back: u64,
     /// The pipe's last end's node (0 without a lay-down wire above it).
     pipe_end: usize,
+    /// Whether the window's top is at the tower's exit (the tower holds a moment), else it moves
+    /// down the tower above it ([`exit::Top`]).
+    clamp_at_exit: bool,
     /// A lay-down's station height, m ([`LayRun::vessel_speed_at`]).
     station_height: f64,
     /// When the pipe's end left the tower, and the touchdown's KP then (a lay-down).
@@ -265,11 +269,12 @@ impl Lay {
             catena_seabed::law::SeabedHistory::Linear(Default::default()),
             |s| s.seabed.untouched(),
         );
-        let (first, last) = (o - 1, n - 1);
+        let (clamp_at_exit, first, d_top) = exit::start(st, &full, o, eps);
+        let last = n - 1;
         let dm = window::model(
             &full,
             &base,
-            (first, last),
+            (first, last, full.elements[first].l0),
             (spec.tower, theta, first < pipe_end),
             &dspec,
         );
@@ -319,7 +324,8 @@ impl Lay {
         let records = (dspec.duration / (dspec.dt * dspec.output_every as f64)).ceil() as usize + 1;
         let mut l = Self {
             file,
-            d_top: full.elements[first].l0 * (1.0 + eps),
+            d_top,
+            clamp_at_exit,
             rate: 0.0,
             station_height: station_height(&full, pipe_end, &spec),
             spec,
@@ -525,12 +531,7 @@ impl Lay {
         let rate = self.payout_rate(dt);
         let speed = self.vessel_speed_at(self.state.t + 0.5 * dt);
         let s = rate * (1.0 + self.eps);
-        let vel = [speed - s * self.up[0], -s * self.up[1]];
-        let b = &self.dm.placement.base;
-        let d0 = [
-            self.exit0[0] + self.vessel_x + self.d_top * self.up[0] - b[0],
-            self.exit0[1] + self.d_top * self.up[1] - b[1],
-        ];
+        let (d0, vel) = self.top_motion(speed, s, dt);
         let t = self.state.t;
         // Linear over the step (the series' last point beyond it, so that the velocity at the
         // step's end is the step's).
@@ -582,17 +583,14 @@ impl Lay {
                 || self.res.seabed_force[self.pipe_end - self.first] >= 0.9 * w)
     }
 
-    /// The tension at the tower's exit: the top node's reaction less the submerged weight of the
-    /// pipe between it and the exit, along the tower.
-    fn exit_tension(&self) -> f64 {
-        let w = self.full.elements[self.first].weight;
-        self.res.tension[0] - w * self.d_top.max(0.0) / (1.0 + self.eps) * self.up[1]
-    }
-
-    /// Moves the window when the top node has reached the exit (or risen an element above it).
+    /// Moves the window when the top node leaves the tower (the node above it becomes the top) or,
+    /// paid in, goes back onto it (the node below it becomes the top), at the thresholds of
+    /// [`exit::Top::thresholds`].
     fn move_window(&mut self) -> Result<(), AppError> {
-        let l_top = self.full.elements[self.first].l0;
-        if self.d_top <= 0.0 {
+        let l_top = self.full.elements[self.first].l0 * (1.0 + self.eps);
+        let top = self.top();
+        let (release_at, take_back_at) = top.thresholds(l_top);
+        if self.d_top <= release_at {
             if self.first == 0 {
                 return Err(AppError::Run {
                     file: self.file.clone(),
@@ -614,51 +612,18 @@ impl Lay {
                     .map_or(f64::NAN, |(_, a)| self.full.length() - a);
                 self.left_tower = Some((self.state.t, kp));
             }
-            let p = self.at(k);
-            if k - 1 < self.pipe_end {
-                // Over the sheave, the wire runs out along its own line, not the tower's.
-                let below = self.at(k + 1);
-                let (dx, dz) = (p[0] - below[0], p[1] - below[1]);
-                let len = dx.hypot(dz);
-                self.up = [dx / len, dz / len];
-            }
-            self.place_on_tower(k - 1, [p[0] + l * self.up[0], p[1] + l * self.up[1]], k);
+            self.leave_tower(k, l, top);
             self.d_top += l;
             self.rewindow(k - 1, last)
-        } else if self.d_top > l_top * (1.0 + self.eps) && self.first + 3 < self.last {
-            // Paid in: the node below the top goes back onto the tower.
+        } else if self.d_top > take_back_at && self.first + 3 < self.last {
             self.store.keep(self.first, &self.state);
             let k = self.first;
-            let l = l_top * (1.0 + self.eps);
-            let p = self.at(k);
-            self.place_on_tower(k + 1, [p[0] - l * self.up[0], p[1] - l * self.up[1]], k);
-            self.d_top -= l;
+            self.back_onto_tower(k, l_top, top);
+            self.d_top -= l_top;
             self.taken_back += 1;
             self.rewindow(k + 1, self.last)
         } else {
             Ok(())
-        }
-    }
-
-    /// Puts node `g` on the tower at `p`, at the tower's angle, moving with node `like`.
-    fn place_on_tower(&mut self, g: usize, p: [f64; 2], like: usize) {
-        let b = &self.base.base;
-        let s = &mut self.store;
-        s.u[3 * g] = p[0] - b[3 * g];
-        s.u[3 * g + 1] = p[1] - b[3 * g + 1];
-        s.u[3 * g + 2] = self.theta - b[3 * g + 2];
-        for c in 0..2 {
-            s.v[3 * g + c] = s.v[3 * like + c];
-            s.a[3 * g + c] = s.a[3 * like + c];
-        }
-        s.v[3 * g + 2] = 0.0;
-        s.a[3 * g + 2] = 0.0;
-        let st = s.stride;
-        if st > 0 {
-            s.friction[st * g] = p[0];
-            if st == 2 {
-                s.friction[st * g + 1] = p[1];
-            }
         }
     }
 
@@ -699,10 +664,11 @@ impl Lay {
             (self.state.t, self.state.step),
             grid.as_ref().map(|g| (old_first, g)),
         );
+        let top_l0 = self.top_rest_length(first);
         let dm = window::model(
             &self.full,
             &self.base,
-            (first, last),
+            (first, last, top_l0),
             (self.spec.tower, self.theta, first < self.pipe_end),
             &self.dspec,
         );

@@ -4,8 +4,15 @@
 //! The whole pipe is one material mesh (`full`, node 0 the pipe's last end on the vessel, arc
 //! length from there), with one base configuration (`Placement`: the tower's nodes along the
 //! tower, the rest where the statics' seed put them). A window is the nodes `first..=last`: the
-//! top node `first` prescribed on the tower just above its exit (clamped, or on the tower's
-//! rotational spring), every node below it free, and `last` held where it lies (a frozen node).
+//! top node `first` prescribed at the tower's exit itself (clamped at the tower's angle, or on the
+//! tower's rotational spring), every node below it free, and `last` held where it lies (a frozen
+//! node). The clamp is at the exit, not at a node: the top element runs from the exit to node
+//! `first + 1`, its rest length the pipe between them, growing with the payout between half an
+//! element and one and a half; node `first` stands for the exit while its own material is within
+//! half an element of it, and leaves the tower when it is half an element below it, placed on the
+//! top element's cubic (`Lay::release`). So each node leaves the tower where the pipe already
+//! is, and the tower's moment stays at the exit: a tower off the pipe's departure angle lays the
+//! same at 1 m elements as at 0.5 m (`validation/lay.md`).
 //! Nodes above the window wait on the vessel and nodes below it are frozen: neither is in the
 //! solve, so a step costs what the window costs, whatever the length already laid.
 //!
@@ -44,12 +51,13 @@ pub struct Store {
     pub stride: usize,
 }
 
-/// The Model of the window `first..=last` of the material mesh; `over_sheave`: its top node is
-/// the lay-down's wire, which runs over a sheave (pinned: it takes no moment).
+/// The Model of the window `first..=last` of the material mesh, its top element `top_l0` long
+/// (from the tower's exit to node `first + 1`); `over_sheave`: its top node is the lay-down's
+/// wire, which runs over a sheave (pinned: it takes no moment).
 pub fn model(
     full: &LineModel,
     base: &Placement,
-    (first, last): (usize, usize),
+    (first, last, top_l0): (usize, usize, f64),
     (tower, tower_theta, over_sheave): (Tower, f64, bool),
     spec: &DynamicSpec,
 ) -> DynamicModel {
@@ -65,8 +73,12 @@ pub fn model(
             }),
         ),
     };
+    let mut line = full.window(first, last, support, flexjoint);
+    if top_l0 != line.elements[0].l0 {
+        line.set_top_rest_length(top_l0);
+    }
     DynamicModel {
-        line: full.window(first, last, support, flexjoint),
+        line,
         placement: Placement {
             base: base.base[3 * first..3 * (last + 1)].to_vec(),
             chords: base.chords[first..last].to_vec(),
