@@ -303,7 +303,7 @@ fn a_lay_down_lands_the_pipe_end() {
 }
 
 /// A lay-down holding station (`cases/lay/laydown-12in-station.toml`: `[lay.wire] station = true`,
-/// the station height `h` by default a quarter of the pipe's bending length `(EI/W')^(1/3)`, 10.3 m):
+/// the station height `h` by default a quarter of the pipe's bending length `(EI/W')^(1/3)`, 10.2 m):
 /// the vessel keeps the lay's speed when the pipe's end leaves the tower, comes to rest as the end
 /// comes down from `2h` to `h` above the mudline (the frame after it stops: the end within 5 % of
 /// `h` or below it) and holds station to the bit until the end rests on the seabed.
