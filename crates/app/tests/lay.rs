@@ -690,3 +690,34 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
     assert_eq!(bits(&w.touchdown_x), bits(&a.touchdown_x));
     assert_eq!(bits(&whole.nodes.as_laid), bits(&again.nodes.as_laid));
 }
+
+/// `[lay.wire] station_height` is read: the station lay-down held from 20 m (the key) stops the
+/// vessel with the pipe's end at most 20 m above the mudline (within 5 %) and more than 12 m (the
+/// default, 10.2 m, would stop it lower), and the end still rests.
+#[test]
+fn the_station_height_is_the_scenes() {
+    let text = case("laydown-12in-station.toml")
+        .replace("station = true ", "station_height = 20.0\nstation = true ");
+    let r = lay_of(&text);
+    assert!(r.lay_down.and_then(|d| d.rested).is_some(), "the end rests");
+    let rec = &r.records;
+    let x_last = *rec.vessel_x.last().expect("records");
+    let k = (0..rec.time.len())
+        .rev()
+        .take_while(|&k| rec.vessel_x[k] == x_last)
+        .last()
+        .expect("records");
+    let f = &r.frames;
+    let j = f
+        .time
+        .iter()
+        .position(|&t| t >= rec.time[k])
+        .expect("a frame");
+    let od = r.statics.model.elements[0].contact_od;
+    let above = -f64::from(f.penetration[j * r.full.nodes() + 250]) + 0.5 * od;
+    println!(
+        "the vessel stopped at {:.1} s, the end {above:.2} m above the mudline",
+        rec.time[k]
+    );
+    assert!(above < 1.05 * 20.0 && above > 12.0, "{above}");
+}
