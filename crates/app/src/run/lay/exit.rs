@@ -79,12 +79,16 @@ impl Lay {
 
     /// The rest length of the top element of a window whose top is node `first`, m.
     pub(super) fn top_rest_length(&self, first: usize) -> f64 {
-        let l = self.full.elements[first].l0;
         if self.clamp_at_exit && first >= self.pipe_end {
-            l - self.d_top / (1.0 + self.eps)
+            self.exit_rest_length(first, self.d_top)
         } else {
-            l
+            self.full.elements[first].l0
         }
+    }
+
+    /// `L_top = L_first − d_top/(1 + ε)`: the top element's rest length at the exit, m.
+    fn exit_rest_length(&self, first: usize, d_top: f64) -> f64 {
+        self.full.elements[first].l0 - d_top / (1.0 + self.eps)
     }
 
     /// The top node's displacement at the step's start and its velocity over the step of `dt`, the
@@ -95,8 +99,7 @@ impl Lay {
         match self.top() {
             Top::Exit => {
                 let d0 = [self.exit0[0] + self.vessel_x - b[0], self.exit0[1] - b[1]];
-                let l_end =
-                    self.full.elements[self.first].l0 - (self.d_top - s * dt) / (1.0 + self.eps);
+                let l_end = self.exit_rest_length(self.first, self.d_top - s * dt);
                 self.dm.line.set_top_rest_length(l_end);
                 self.ws.top_rest_length_changed(&self.dm.line);
                 (d0, [speed, 0.0])
