@@ -276,9 +276,12 @@ fn hard_lay_cases_stay_stable() {
 
 /// The lay-down (`cases/lay/laydown-12in.toml`, also the hard case of a lay-down touching the
 /// seabed): the last 100 m of pipe laid, then its end lowered on the A&R wire while the vessel keeps
-/// its speed, until the end rests on the seabed with 90 % of W'. The end is embedded (at least the
-/// self-weight embedment), the wire's tension at the tower falls below half the lay's as the end
-/// lands, and the sag bend is not over-bent (its largest moment within 5 % of the lay's).
+/// its speed, until the end rests on the seabed with 90 % of W' (read at the pipe's first node below
+/// its end). The end is embedded, by more than half the self-weight embedment (its node carries half
+/// an element's weight, and the wire's pull) and less than any steady point's as-laid (it lands
+/// without the force concentration of the sag bend); the wire's tension at the tower falls below
+/// half the lay's as the end lands, and the sag bend is not over-bent (its largest moment within 5 %
+/// of the lay's).
 #[test]
 fn a_lay_down_lands_the_pipe_end() {
     let r = lay_of(&case("laydown-12in.toml"));
@@ -297,7 +300,8 @@ fn a_lay_down_lands_the_pipe_end() {
         -r.statics.summary.max_sag_moment.0 / 1e3
     );
     assert!(rested > d.left_tower);
-    assert!(d.end_embedment >= s.self_weight_embedment);
+    assert!(d.end_embedment > 0.5 * s.self_weight_embedment);
+    assert!(d.end_embedment < s.as_laid_min);
     assert!(tension_end < 0.5 * r.statics.summary.top_tension);
     assert!(s.sag_moment_max < 1.05 * -r.statics.summary.max_sag_moment.0);
 }
@@ -334,7 +338,7 @@ fn a_station_lay_down_holds_the_vessel_until_the_end_rests() {
         "{v_left}"
     );
     assert!(t_stop > d.left_tower + 600.0, "stopped at {t_stop}");
-    assert!(rested > t_stop + 300.0, "held {} s", rested - t_stop);
+    assert!(rested > t_stop + 200.0, "held {} s", rested - t_stop);
     assert!(above < 1.05 * h && above > 0.0, "{above} m above, h = {h}");
 }
 
@@ -680,18 +684,19 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
     assert_eq!(bits(&whole.nodes.as_laid), bits(&again.nodes.as_laid));
 }
 
-/// `[lay.wire] station_height` is read: the station lay-down held from 20 m (the key) stops the
-/// vessel with the pipe's end at most 20 m above the mudline (within 5 %) and more than 12 m (the
-/// default, 10.2 m, would stop it lower), and the end still rests.
+/// `[lay.wire] station_height` is read: the station lay-down held from 40 m (the key) stops the
+/// vessel with the pipe's end at most 40 m above the mudline (within 5 %) and more than 30 m (the
+/// default, 10.2 m, would stop it lower), and the end still rests (held from up to 60 m it lands,
+/// from 80 m the run stops with the end swung 33–39 m ahead of the vessel: `validation/lay.md` §7).
 #[test]
 fn the_station_height_is_the_scenes() {
     let text = case("laydown-12in-station.toml")
-        .replace("station = true ", "station_height = 20.0\nstation = true ");
+        .replace("station = true ", "station_height = 40.0\nstation = true ");
     let r = lay_of(&text);
     assert!(r.lay_down.and_then(|d| d.rested).is_some(), "the end rests");
     let (t_stop, above) = vessel_stop(&r);
     println!("the vessel stopped at {t_stop:.1} s, the end {above:.2} m above the mudline");
-    assert!(above < 1.05 * 20.0 && above > 12.0, "{above}");
+    assert!(above < 1.05 * 40.0 && above > 30.0, "{above}");
 }
 
 /// When the vessel of a lay-down stood still for good (the first record of the last run of equal
@@ -716,4 +721,44 @@ fn vessel_stop(r: &LayRun) -> (f64, f64) {
         rec.time[k],
         -f64::from(f.penetration[j * r.full.nodes() + 250]) + 0.5 * od,
     )
+}
+
+/// The A&R wire is a `[[line_type]]` section after the pipe (`[lay.wire] type`,
+/// `cases/lay/laydown-12in.toml`): the same wire as the same properties written in `[lay.wire]`
+/// itself (equal to the bit), and the line type's own Morison coefficient reaches the wire's
+/// elements (and only theirs) in the whole pipe's mesh.
+#[test]
+fn the_a_and_r_wire_is_a_line_type_section() {
+    let typed = case("laydown-12in.toml");
+    let start = typed.find("[[line_type]]").expect("a line type");
+    let end = typed[start..].find("\n\n").expect("its end") + start + 2;
+    let keys: String = typed[start..end]
+        .lines()
+        .filter(|l| !l.starts_with("[[line_type]]") && !l.starts_with("name"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let inline = typed
+        .replace(&typed[start..end], "")
+        .replace("type = \"ar-wire\"\n", &keys);
+    let (a, b) = (scene(&typed), scene(&inline));
+    let wire = a.lay.as_ref().and_then(|l| l.lay_down).expect("a wire");
+    assert_eq!(Some(wire), b.lay.as_ref().and_then(|l| l.lay_down));
+    assert_eq!((wire.od, wire.ea, wire.weight), (0.076, 2.3e8, 200.0));
+    assert!(wire.coefficients.is_none());
+
+    // The wire's own drag coefficient, 1.2 against [hydrodynamics]' 1.0 for the pipe.
+    let text = typed
+        .replace(
+            "name = \"ar-wire\" ",
+            "cd_normal = 1.2\nname = \"ar-wire\" ",
+        )
+        .replace("duration = 8000.0", "duration = 1.0");
+    let r = lay_of(&text);
+    let e = &r.full.elements;
+    let cd = |k: usize| e[k].coefficients.map(|c| c.cd_normal);
+    assert!(
+        (0..250).all(|k| cd(k) == Some(1.2)),
+        "the wire's 250 elements"
+    );
+    assert!((250..e.len()).all(|k| cd(k).is_none()), "the pipe's");
 }

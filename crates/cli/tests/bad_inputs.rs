@@ -553,6 +553,27 @@ const ROWS: &[(&str, &str, &str, &str, &str)] = &[
         "lay.wire.station_height",
     ),
     (
+        "an A&R wire of a line type there is not",
+        "lay/laydown-12in",
+        "type = \"ar-wire\"",
+        "type = \"no-such-wire\"",
+        "lay.wire.type",
+    ),
+    (
+        "an A&R wire of a line type with a property of its own",
+        "lay/laydown-12in",
+        "type = \"ar-wire\"",
+        "type = \"ar-wire\"\nod = 0.08",
+        "lay.wire.od",
+    ),
+    (
+        "a line type in a lay that is not the A&R wire's",
+        "lay/jlay-12in-steady",
+        "[lay]",
+        "[[line_type]]\nname = \"pipe\"\nod = 0.3239\nea = 4e9\nei = 4.7e7\nsubmerged_weight = 660.0\nmass = 160.0\n\n[lay]",
+        "line_type[0]",
+    ),
+    (
         "a negative station height",
         "lay/laydown-12in-station",
         "station = true ",

@@ -7,14 +7,18 @@
 //! (`payout = "position"`) or by a tensioner that holds `target_tension` at the top
 //! (`payout = "tension"`: the payout rate follows `V + gain·(T − T_target)` with the time constant
 //! `time_constant`, limited to ±`max_payout_rate`).
-//! With `lay_down = true`, the pipe's end is lowered to the seabed on the wire of `[lay.wire]` once it
-//! has left the tower, the vessel holding station. Every key is SI: m, s, N, N·m/rad; the tower angle
+//! With `lay_down = true`, the pipe's end is lowered to the seabed on the A&R wire of `[lay.wire]`
+//! (a section of the `[[line_type]]` its `type` names, or its own keys) once it has left the tower,
+//! the vessel keeping the lay's speed (or, with `station = true`, holding station for the last of
+//! the lowering). Every key is SI: m, s, N, N·m/rad; the tower angle
 //! in degrees from the vertical.
 
 use super::checks::positive;
 use super::invalid;
-use super::tables::{LayTable, PayoutKey, RiserFile, TowerKey};
+use super::sections;
+use super::tables::{LayTable, PayoutKey, RiserFile, TowerKey, WireTable};
 use crate::error::SceneError;
+use catena_fe::environment::Coefficients;
 
 /// How the tower holds the pipe at its exit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,8 +80,14 @@ pub struct LaySpec {
 pub struct Wire {
     /// Its length, m.
     pub length: f64,
-    /// Its diameter (hydrodynamic and contact), m.
+    /// Its diameter, m.
     pub od: f64,
+    /// Its hydrodynamic diameter (drag, added mass), m.
+    pub hydro_od: f64,
+    /// Its contact diameter, m.
+    pub contact_od: f64,
+    /// Its own Morison coefficients (a `[[line_type]]`'s), else `[hydrodynamics]`'s.
+    pub coefficients: Option<Coefficients>,
     /// Axial stiffness, N.
     pub ea: f64,
     /// Bending stiffness, N·m² (a wire's is small; it keeps the elements' kernel well posed).
@@ -179,7 +189,7 @@ pub(super) fn lay_spec(file: &str, raw: &RiserFile) -> Result<Option<LaySpec>, S
         ));
     }
     let in_water = raw.line.length;
-    let lay_down = lay_down(file, l)?;
+    let lay_down = lay_down(file, raw, l)?;
     if lay_down.is_some() && l.pipe_length.is_none_or(|v| v <= in_water) {
         return Err(invalid(
             file,
@@ -306,8 +316,28 @@ fn pipe_length(
     })
 }
 
-/// `lay_down` and `[lay.wire]`, checked.
-fn lay_down(file: &str, l: &LayTable) -> Result<Option<Wire>, SceneError> {
+/// `lay_down` and `[lay.wire]`, checked: the wire's properties from its keys or from the
+/// `[[line_type]]` its `type` names (a lay scene's only use of `[[line_type]]`).
+fn lay_down(file: &str, raw: &RiserFile, l: &LayTable) -> Result<Option<Wire>, SceneError> {
+    let wire_type = l.wire.as_ref().and_then(|w| w.line_type.as_deref());
+    // (A `type` that names no line type is reported as such below.)
+    let named = wire_type.is_none_or(|n| raw.line_type.iter().any(|t| t.name == n));
+    if let Some((i, t)) = named
+        .then_some(raw)
+        .into_iter()
+        .flat_map(|r| r.line_type.iter().enumerate())
+        .find(|(_, t)| Some(t.name.as_str()) != wire_type || !l.lay_down)
+    {
+        return Err(invalid(
+            file,
+            format!("line_type[{i}]"),
+            format!(
+                "in a scene with [lay], a [[line_type]] only for the lay-down's A&R wire \
+                 (`[lay.wire] type = \"{}\"`; the pipe is [line]'s)",
+                t.name
+            ),
+        ));
+    }
     let w = match (l.lay_down, &l.wire) {
         (false, None) => return Ok(None),
         (false, Some(_)) => {
@@ -322,29 +352,57 @@ fn lay_down(file: &str, l: &LayTable) -> Result<Option<Wire>, SceneError> {
                 file,
                 "lay.wire",
                 "a [lay.wire] table for the lay-down: the wire the pipe's end is lowered on \
-                 (length, od, ea, submerged_weight, mass)",
+                 (length, and a [[line_type]]'s name as `type` or od, ea, submerged_weight, mass)",
             ))
         }
         (true, Some(w)) => w,
     };
     let p = |key: &str, v: f64, what: &str| positive(file, &format!("lay.wire.{key}"), v, what);
-    let ea = p("ea", w.ea, "an axial stiffness in N")?;
+    let length = p("length", w.length, "a length in m")?;
+    let element_length = p(
+        "element_length",
+        w.element_length.unwrap_or(1.0),
+        "an element length in m",
+    )?;
+    let (od, hydro_od, contact_od, ea, ei, weight, mass, coefficients) = match &w.line_type {
+        Some(name) => {
+            let s = wire_segment(file, raw, w, name, length, element_length)?;
+            let (od, h, c) = (s.od, s.hydro_od, s.contact_od);
+            let (ea, ei) = (s.section.ea, s.section.ei);
+            (od, h, c, ea, ei, s.weight, s.mass, s.coefficients)
+        }
+        None => {
+            let need = |key: &str, v: Option<f64>, what: &str| match v {
+                Some(v) => p(key, v, what),
+                None => Err(invalid(
+                    file,
+                    format!("lay.wire.{key}"),
+                    format!("{what} (or `type`: a [[line_type]]'s name for the wire)"),
+                )),
+            };
+            let od = need("od", w.od, "a diameter in m")?;
+            let ea = need("ea", w.ea, "an axial stiffness in N")?;
+            let ei = p(
+                "ei",
+                w.ei.unwrap_or(1e-6 * ea),
+                "a bending stiffness in N·m²",
+            )?;
+            let weight = need("submerged_weight", w.submerged_weight, "a weight in N/m")?;
+            let mass = need("mass", w.mass, "a mass in kg/m")?;
+            (od, od, od, ea, ei, weight, mass, None)
+        }
+    };
     Ok(Some(Wire {
-        length: p("length", w.length, "a length in m")?,
-        od: p("od", w.od, "a diameter in m")?,
+        length,
+        od,
+        hydro_od,
+        contact_od,
+        coefficients,
         ea,
-        ei: p(
-            "ei",
-            w.ei.unwrap_or(1e-6 * ea),
-            "a bending stiffness in N·m²",
-        )?,
-        weight: p("submerged_weight", w.submerged_weight, "a weight in N/m")?,
-        mass: p("mass", w.mass, "a mass in kg/m")?,
-        element_length: p(
-            "element_length",
-            w.element_length.unwrap_or(1.0),
-            "an element length in m",
-        )?,
+        ei,
+        weight,
+        mass,
+        element_length,
         station: w.station,
         station_height: match (w.station_height, w.station) {
             (None, _) => None,
@@ -356,6 +414,52 @@ fn lay_down(file: &str, l: &LayTable) -> Result<Option<Wire>, SceneError> {
             )),
         },
     }))
+}
+
+/// The wire as one section of the `[[line_type]]` named `name` (checked as any line type; no
+/// property key of its own beside `type`, and no taper).
+fn wire_segment(
+    file: &str,
+    raw: &RiserFile,
+    w: &WireTable,
+    name: &str,
+    length: f64,
+    element_length: f64,
+) -> Result<catena_fe::model::Segment, SceneError> {
+    let own = [
+        ("od", w.od.is_some()),
+        ("ea", w.ea.is_some()),
+        ("ei", w.ei.is_some()),
+        ("submerged_weight", w.submerged_weight.is_some()),
+        ("mass", w.mass.is_some()),
+    ];
+    if let Some((k, _)) = own.iter().find(|(_, given)| *given) {
+        return Err(invalid(
+            file,
+            format!("lay.wire.{k}"),
+            format!(
+                "no property key beside `type` (the wire's properties are line type \"{name}\"'s)"
+            ),
+        ));
+    }
+    let Some(k) = raw.line_type.iter().position(|t| t.name == name) else {
+        return Err(invalid(
+            file,
+            "lay.wire.type",
+            format!("the name of a [[line_type]] (got \"{name}\", and none has it)"),
+        ));
+    };
+    let t = &raw.line_type[k];
+    sections::line_type(file, raw, k, t)?;
+    if t.od_end.is_some() || t.wall_end.is_some() {
+        return Err(invalid(
+            file,
+            format!("line_type[{k}].od_end"),
+            "no taper for the A&R wire (one section of constant properties)",
+        ));
+    }
+    let mut segs = sections::section_segments(file, raw, k, t, length, element_length)?;
+    Ok(segs.remove(0))
 }
 
 fn payout(file: &str, l: &LayTable) -> Result<Payout, SceneError> {

@@ -62,7 +62,8 @@ pub(super) fn layout(
     raw: &RiserFile,
 ) -> Result<Option<(Layout, Vec<String>)>, SceneError> {
     if raw.section.is_empty() {
-        if let Some(t) = raw.line_type.first() {
+        // A lay's `[[line_type]]` is its A&R wire's (`scene/lay.rs` checks it).
+        if let Some(t) = raw.line_type.first().filter(|_| raw.lay.is_none()) {
             return Err(invalid(
                 file,
                 "section",
@@ -185,7 +186,7 @@ fn keys<'a>(prefix: &'a str, t: &LineTypeTable, od: f64, wall: Option<f64>) -> P
 }
 
 /// Line type `i`, checked (a taper's end too).
-fn line_type(
+pub(super) fn line_type(
     file: &str,
     raw: &RiserFile,
     i: usize,
@@ -302,7 +303,7 @@ fn line_type(
 
 /// The segments of a section `length` m long of line type `k` (`t`): one, or, tapered, one per
 /// element with the taper's properties at its middle.
-fn section_segments(
+pub(super) fn section_segments(
     file: &str,
     raw: &RiserFile,
     k: usize,

@@ -508,11 +508,14 @@ pub struct LayTable {
 #[allow(missing_docs)]
 pub struct WireTable {
     pub length: f64,
-    pub od: f64,
-    pub ea: f64,
+    /// A `[[line_type]]`'s name: the wire's properties are that type's (else the keys below).
+    #[serde(rename = "type")]
+    pub line_type: Option<String>,
+    pub od: Option<f64>,
+    pub ea: Option<f64>,
     pub ei: Option<f64>,
-    pub submerged_weight: f64,
-    pub mass: f64,
+    pub submerged_weight: Option<f64>,
+    pub mass: Option<f64>,
     pub element_length: Option<f64>,
     #[serde(default)]
     pub station: bool,

@@ -66,9 +66,9 @@ pub(super) fn material_mesh(line: &LineModel, spec: &LaySpec) -> (LineModel, usi
             weight: w.weight,
             mass: w.mass,
             od: w.od,
-            hydro_od: w.od,
-            contact_od: w.od,
-            coefficients: None,
+            hydro_od: w.hydro_od,
+            contact_od: w.contact_od,
+            coefficients: w.coefficients,
             kind: top.kind,
             wall: None,
         };
@@ -81,7 +81,7 @@ pub(super) fn material_mesh(line: &LineModel, spec: &LaySpec) -> (LineModel, usi
 
 /// A lay-down's station height (`[lay.wire] station_height`), m: the scene's, else a quarter of the
 /// pipe's bending length `λ = (EI/W')^(1/3)` at its last end (10.2 m for the 12-inch pipe: held
-/// from 10 and 20 m the end lands, from 30 m and higher the run stops, `validation/lay.md` §7);
+/// from up to 60 m the end lands, from 80 m and higher the run stops, `validation/lay.md` §7);
 /// NaN without a lay-down.
 pub(super) fn station_height(full: &LineModel, pipe_end: usize, spec: &LaySpec) -> f64 {
     let Some(w) = spec.lay_down else {

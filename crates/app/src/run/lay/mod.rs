@@ -574,13 +574,15 @@ impl Lay {
     }
 
     /// Whether the lay-down is over: the pipe's end, off the tower, presses on the seabed with 90 %
-    /// of the pipe's submerged weight.
+    /// of the pipe's submerged weight. Read at the pipe's first node below its end: the end's own
+    /// node has the mean of the wire's and the pipe's contact diameters (0.200 m for the 12-inch
+    /// pipe on its 76 mm wire), so a pipe end at rest a few centimetres deep does not touch there.
     fn pipe_end_rests(&self) -> bool {
         let w = self.full.elements[self.pipe_end].weight;
+        let k = self.pipe_end + 1;
         self.left_tower.is_some()
             && self.pipe_end > self.first
-            && (self.pipe_end >= self.last
-                || self.res.seabed_force[self.pipe_end - self.first] >= 0.9 * w)
+            && (k >= self.last || self.res.seabed_force[k - self.first] >= 0.9 * w)
     }
 
     /// Moves the window when the top node leaves the tower (the node above it becomes the top) or,
@@ -728,9 +730,11 @@ impl Lay {
     fn finish(&mut self) {
         self.store.keep(self.first, &self.state);
         if self.rested.is_some() {
-            // The lay-down's end: every node of the pipe in contact is at rest.
+            // The lay-down's end: every node of the pipe in contact is at rest, and the pipe's end
+            // (whose node's own contact diameter, the wire's and the pipe's mean, may not touch).
             for g in self.pipe_end.max(self.first)..self.last {
-                if self.res.penetration[g - self.first] > 0.0 && self.nodes.as_laid[g].is_nan() {
+                let touches = g == self.pipe_end || self.res.penetration[g - self.first] > 0.0;
+                if touches && self.nodes.as_laid[g].is_nan() {
                     let h = self.store.history[g];
                     self.nodes.lay(&self.full, g, self.at(g).into(), &h);
                 }
