@@ -169,7 +169,8 @@ pub struct LaySummary {
     pub static_lay_factor: f64,
     /// The touchdown lay factor: the largest contact force a steady node felt over `W'`.
     pub lay_factor: f64,
-    /// Randolph & White (2008): `0.6 + 0.4 λ^0.25`, `λ = EI·k/T0²` (k the backbone's secant at W').
+    /// Randolph & White (2008), DNV-RP-F114 §4.2.5.2: `0.6 + 0.4 λ^0.25`, `λ = EI·k/T0²`, with k the
+    /// backbone's secant at the embedment under the factored force (implicit; 1 ≤ k_lay ≤ 3).
     pub lay_factor_closed_form: f64,
     /// `λ = EI·k/T0²` of the closed form.
     pub lambda: f64,

@@ -157,7 +157,7 @@ impl super::Lay {
         let z_w = z(w);
         let td = st.results.seabed_force.iter().position(|&p| p > 0.0);
         let t0 = td.map_or(f64::NAN, |i| st.results.tension[i]);
-        let lambda = top.section.ei * (w / z_w) / (t0 * t0);
+        let (closed_form, lambda) = touchdown_lay_factor(top.section.ei, w, t0, z);
         let r = &self.records;
         let (_, t_lo, t_hi, _) = stats(r.top_tension.iter().copied());
         let (_, m_lo, _, _) = stats(r.sag_moment.iter().copied());
@@ -179,7 +179,7 @@ impl super::Lay {
             static_embedment: z(static_max),
             static_lay_factor: static_max / w,
             lay_factor,
-            lay_factor_closed_form: 0.6 + 0.4 * lambda.powf(0.25),
+            lay_factor_closed_form: closed_form,
             lambda,
             dynamic_embedment_factor: mean / z_w,
             top_tension_min: t_lo,
@@ -188,5 +188,60 @@ impl super::Lay {
             sag_strain_max: sag_strain,
             episodes_mean: episodes,
         }
+    }
+}
+
+/// The touchdown lay factor's closed form, `k_lay = 0.6 + 0.4 λ^0.25`, `λ = EI·k/T0²` (Randolph &
+/// White 2008, OTC 19128; DNV-RP-F114 §4.2.5.2, Eq. 4.13–4.14), with `k` the seabed's secant
+/// stiffness at the embedment it causes, `k = k_lay·W'/z(k_lay·W')` (`z` the backbone's
+/// penetration at a force per unit length): an implicit equation, solved by bisection within the
+/// form's range 1 ≤ k_lay ≤ 3 (clipped to its ends). Returns `(k_lay, λ)`; NaN where `z` is.
+pub(crate) fn touchdown_lay_factor(ei: f64, w: f64, t0: f64, z: impl Fn(f64) -> f64) -> (f64, f64) {
+    let lambda = |f: f64| ei * (f * w / z(f * w)) / (t0 * t0);
+    let g = |f: f64| 0.6 + 0.4 * lambda(f).powf(0.25) - f;
+    let (mut lo, mut hi) = (1.0, 3.0);
+    let f = if !(g(lo).is_finite() && g(hi).is_finite()) {
+        f64::NAN
+    } else if g(lo) <= 0.0 {
+        lo
+    } else if g(hi) >= 0.0 {
+        hi
+    } else {
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if g(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    (f, lambda(f))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::touchdown_lay_factor;
+
+    /// On a linear seabed (`z = V/k`) the secant is `k` at any force: the explicit form. On a
+    /// softening one (`z = (V/c)²`) the solution satisfies the implicit equation with the secant
+    /// at its own force, to 1e-12; the form's range clips both ends.
+    #[test]
+    fn the_lay_factor_s_closed_form_with_the_secant_at_its_own_embedment() {
+        let (ei, w, t0) = (46.9e6, 660.0, 110e3);
+        let k = 2.0e5;
+        let (f, lambda) = touchdown_lay_factor(ei, w, t0, |v| v / k);
+        let explicit = ei * k / (t0 * t0);
+        assert!((lambda - explicit).abs() < 1e-12 * explicit);
+        assert!((f - (0.6 + 0.4 * explicit.powf(0.25))).abs() < 1e-12);
+        let c = 4000.0;
+        let z = |v: f64| (v / c) * (v / c);
+        let (f, lambda) = touchdown_lay_factor(ei, w, t0, z);
+        let secant = f * w / z(f * w);
+        assert!((lambda - ei * secant / (t0 * t0)).abs() < 1e-9 * lambda);
+        assert!((f - (0.6 + 0.4 * lambda.powf(0.25))).abs() < 1e-12, "{f}");
+        assert_eq!(touchdown_lay_factor(ei, w, t0, |v| v / 10.0).0, 1.0);
+        assert_eq!(touchdown_lay_factor(ei, w, t0, |v| v / 1e12).0, 3.0);
     }
 }
