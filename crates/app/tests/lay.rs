@@ -747,8 +747,9 @@ fn the_a_and_r_wire_is_a_line_type_section() {
     let (a, b) = (scene(&typed), scene(&inline));
     let wire = a.lay.as_ref().and_then(|l| l.lay_down).expect("a wire");
     assert_eq!(Some(wire), b.lay.as_ref().and_then(|l| l.lay_down));
-    assert_eq!((wire.od, wire.ea, wire.weight), (0.076, 2.3e8, 200.0));
-    assert!(wire.coefficients.is_none());
+    let s = wire.segment;
+    assert_eq!((s.od, s.section.ea, s.weight), (0.076, 2.3e8, 200.0));
+    assert!(s.coefficients.is_none());
 
     // The wire's own drag coefficient, 1.2 against [hydrodynamics]' 1.0 for the pipe.
     let text = typed

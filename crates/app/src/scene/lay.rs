@@ -18,7 +18,8 @@ use super::invalid;
 use super::sections;
 use super::tables::{LayTable, PayoutKey, RiserFile, TowerKey, WireTable};
 use crate::error::SceneError;
-use catena_fe::environment::Coefficients;
+use catena_fe::beam::Section;
+use catena_fe::model::Segment;
 
 /// How the tower holds the pipe at its exit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,26 +79,9 @@ pub struct LaySpec {
 /// The abandonment and recovery wire of a lay-down (`[lay.wire]`), SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Wire {
-    /// Its length, m.
-    pub length: f64,
-    /// Its diameter, m.
-    pub od: f64,
-    /// Its hydrodynamic diameter (drag, added mass), m.
-    pub hydro_od: f64,
-    /// Its contact diameter, m.
-    pub contact_od: f64,
-    /// Its own Morison coefficients (a `[[line_type]]`'s), else `[hydrodynamics]`'s.
-    pub coefficients: Option<Coefficients>,
-    /// Axial stiffness, N.
-    pub ea: f64,
-    /// Bending stiffness, N·m² (a wire's is small; it keeps the elements' kernel well posed).
-    pub ei: f64,
-    /// Submerged weight, N/m.
-    pub weight: f64,
-    /// Mass, kg/m.
-    pub mass: f64,
-    /// Element length, m.
-    pub element_length: f64,
+    /// Its length, element length and properties: one section of its `[[line_type]]`, or of its
+    /// own keys (`Segment::uniform`: the three diameters its `od`, `[hydrodynamics]`' coefficients).
+    pub segment: Segment,
     /// Whether the vessel comes to rest and holds station for the last of the lowering (else it
     /// keeps the lay's speed until the pipe's end rests, as lay-downs are done: the sag bend keeps
     /// its tension).
@@ -322,12 +306,12 @@ fn lay_down(file: &str, raw: &RiserFile, l: &LayTable) -> Result<Option<Wire>, S
     let wire_type = l.wire.as_ref().and_then(|w| w.line_type.as_deref());
     // (A `type` that names no line type is reported as such below.)
     let named = wire_type.is_none_or(|n| raw.line_type.iter().any(|t| t.name == n));
-    if let Some((i, t)) = named
-        .then_some(raw)
-        .into_iter()
-        .flat_map(|r| r.line_type.iter().enumerate())
-        .find(|(_, t)| Some(t.name.as_str()) != wire_type || !l.lay_down)
-    {
+    let other = raw
+        .line_type
+        .iter()
+        .enumerate()
+        .find(|(_, t)| Some(t.name.as_str()) != wire_type || !l.lay_down);
+    if let (true, Some((i, t))) = (named, other) {
         return Err(invalid(
             file,
             format!("line_type[{i}]"),
@@ -364,13 +348,8 @@ fn lay_down(file: &str, raw: &RiserFile, l: &LayTable) -> Result<Option<Wire>, S
         w.element_length.unwrap_or(1.0),
         "an element length in m",
     )?;
-    let (od, hydro_od, contact_od, ea, ei, weight, mass, coefficients) = match &w.line_type {
-        Some(name) => {
-            let s = wire_segment(file, raw, w, name, length, element_length)?;
-            let (od, h, c) = (s.od, s.hydro_od, s.contact_od);
-            let (ea, ei) = (s.section.ea, s.section.ei);
-            (od, h, c, ea, ei, s.weight, s.mass, s.coefficients)
-        }
+    let segment = match &w.line_type {
+        Some(name) => wire_segment(file, raw, w, name, length, element_length)?,
         None => {
             let need = |key: &str, v: Option<f64>, what: &str| match v {
                 Some(v) => p(key, v, what),
@@ -389,20 +368,11 @@ fn lay_down(file: &str, raw: &RiserFile, l: &LayTable) -> Result<Option<Wire>, S
             )?;
             let weight = need("submerged_weight", w.submerged_weight, "a weight in N/m")?;
             let mass = need("mass", w.mass, "a mass in kg/m")?;
-            (od, od, od, ea, ei, weight, mass, None)
+            Segment::uniform(length, element_length, Section { ea, ei }, weight, mass, od)
         }
     };
     Ok(Some(Wire {
-        length,
-        od,
-        hydro_od,
-        contact_od,
-        coefficients,
-        ea,
-        ei,
-        weight,
-        mass,
-        element_length,
+        segment,
         station: w.station,
         station_height: match (w.station_height, w.station) {
             (None, _) => None,
@@ -425,7 +395,7 @@ fn wire_segment(
     name: &str,
     length: f64,
     element_length: f64,
-) -> Result<catena_fe::model::Segment, SceneError> {
+) -> Result<Segment, SceneError> {
     let own = [
         ("od", w.od.is_some()),
         ("ea", w.ea.is_some()),

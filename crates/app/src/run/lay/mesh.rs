@@ -1,7 +1,6 @@
 //! The lay's start: the scene's statics set up for the tower (and a warning when the tower holds a
 //! moment), and the whole pipe's mesh.
 
-use catena_fe::beam::Section;
 use catena_fe::model::{Element, FlexJoint, LineModel};
 
 use crate::scene::lay::{LaySpec, Tower};
@@ -59,16 +58,17 @@ pub(super) fn material_mesh(line: &LineModel, spec: &LaySpec) -> (LineModel, usi
     };
     let mut above = Vec::new();
     if let Some(w) = spec.lay_down {
-        let nw = (w.length / w.element_length).ceil().max(1.0) as usize;
+        let s = w.segment;
+        let nw = (s.length / s.element_length).ceil().max(1.0) as usize;
         let wire = Element {
-            l0: w.length / nw as f64,
-            section: Section { ea: w.ea, ei: w.ei },
-            weight: w.weight,
-            mass: w.mass,
-            od: w.od,
-            hydro_od: w.hydro_od,
-            contact_od: w.contact_od,
-            coefficients: w.coefficients,
+            l0: s.length / nw as f64,
+            section: s.section,
+            weight: s.weight,
+            mass: s.mass,
+            od: s.od,
+            hydro_od: s.hydro_od,
+            contact_od: s.contact_od,
+            coefficients: s.coefficients,
             kind: top.kind,
             wall: None,
         };

@@ -200,11 +200,12 @@ pub(crate) fn touchdown_lay_factor(ei: f64, w: f64, t0: f64, z: impl Fn(f64) -> 
     let lambda = |f: f64| ei * (f * w / z(f * w)) / (t0 * t0);
     let g = |f: f64| 0.6 + 0.4 * lambda(f).powf(0.25) - f;
     let (mut lo, mut hi) = (1.0, 3.0);
-    let f = if !(g(lo).is_finite() && g(hi).is_finite()) {
+    let (g_lo, g_hi) = (g(lo), g(hi));
+    let f = if !(g_lo.is_finite() && g_hi.is_finite()) {
         f64::NAN
-    } else if g(lo) <= 0.0 {
+    } else if g_lo <= 0.0 {
         lo
-    } else if g(hi) >= 0.0 {
+    } else if g_hi >= 0.0 {
         hi
     } else {
         for _ in 0..60 {
