@@ -729,8 +729,8 @@ fn vessel_stop(r: &LayRun) -> (f64, f64) {
 
 /// The A&R wire is a `[[line_type]]` section after the pipe (`[lay.wire] type`,
 /// `cases/lay/laydown-12in.toml`): the same wire as the same properties written in `[lay.wire]`
-/// itself (equal to the bit), and the line type's own Morison coefficient reaches the wire's
-/// elements (and only theirs) in the whole pipe's mesh.
+/// itself (equal to the bit), and the line type's own Morison coefficient and diameters reach the
+/// wire's elements (the coefficient only theirs) in the whole pipe's mesh.
 #[test]
 fn the_a_and_r_wire_is_a_line_type_section() {
     let typed = case("laydown-12in.toml");
@@ -751,11 +751,12 @@ fn the_a_and_r_wire_is_a_line_type_section() {
     assert_eq!((s.od, s.section.ea, s.weight), (0.076, 2.3e8, 200.0));
     assert!(s.coefficients.is_none());
 
-    // The wire's own drag coefficient, 1.2 against [hydrodynamics]' 1.0 for the pipe.
+    // The wire's own drag coefficient, 1.2 against [hydrodynamics]' 1.0 for the pipe, and its own
+    // hydrodynamic and contact diameters.
     let text = typed
         .replace(
             "name = \"ar-wire\" ",
-            "cd_normal = 1.2\nname = \"ar-wire\" ",
+            "cd_normal = 1.2\nhydrodynamic_od = 0.09\ncontact_od = 0.08\nname = \"ar-wire\" ",
         )
         .replace("duration = 8000.0", "duration = 1.0");
     let r = lay_of(&text);
@@ -766,4 +767,9 @@ fn the_a_and_r_wire_is_a_line_type_section() {
         "the wire's 250 elements"
     );
     assert!((250..e.len()).all(|k| cd(k).is_none()), "the pipe's");
+    let ods = |k: usize| (e[k].hydro_od, e[k].contact_od, e[k].od);
+    assert!(
+        (0..250).all(|k| ods(k) == (0.09, 0.08, 0.076)),
+        "the wire's diameters"
+    );
 }
