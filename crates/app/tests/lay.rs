@@ -703,6 +703,23 @@ fn the_station_height_is_the_scenes() {
     assert!(above < 1.05 * 40.0 && above > 30.0, "{above}");
 }
 
+/// The hard case of a lay-down held from high up: the vessel slows as the end leaves the tower
+/// (a station height of 130 m, the whole lowering) and the pipe's end swings some 30 m ahead of the
+/// vessel as it comes down, the wire leaning forward from the sheave. Each wire node coming over the
+/// sheave becomes the window's pinned top at the wire's own angle; at the tower's (15° against the
+/// wire's 28°) it bent the top element, its rotation rang, wrapped and spun (10¹⁰ rad by 3564 s) and
+/// Newton stalled at the rounding of that angle: the run stopped with the end 67 m up. It rests now.
+#[test]
+fn a_lay_down_held_from_high_up_lands() {
+    let text = case("laydown-12in-station.toml")
+        .replace("station = true ", "station_height = 130.0\nstation = true ");
+    let r = lay_of(&text);
+    let rested = r.lay_down.and_then(|d| d.rested);
+    println!("rested {rested:?}, {} cuts", r.cuts);
+    assert!(rested.is_some(), "the end rests");
+    assert!(r.cuts <= 5, "{} step cuts", r.cuts);
+}
+
 /// When the vessel of a lay-down stood still for good (the first record of the last run of equal
 /// positions), s, and the pipe's end's height above the mudline in the first frame from then (node
 /// 250: the wire's 250 elements of 1 m lie above it), m.

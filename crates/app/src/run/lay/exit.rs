@@ -151,14 +151,32 @@ impl Lay {
             self.release(k);
         }
         let p = self.at(k);
-        if k - 1 < self.pipe_end {
-            // Over the sheave, the wire runs out along its own line, not the tower's.
+        let theta = if k - 1 < self.pipe_end {
+            // Over the sheave, the wire runs out along its own line, not the tower's, and at its
+            // angle: the tower's would bend the top element and kick the top node's rotation,
+            // which the pinned sheave leaves to ring (and, with the wrap of a corotational
+            // angle, to spin).
             let below = self.at(k + 1);
             let (dx, dz) = (p[0] - below[0], p[1] - below[1]);
             let len = dx.hypot(dz);
             self.up = [dx / len, dz / len];
-        }
-        self.place_on_line(k - 1, [p[0] + l * self.up[0], p[1] + l * self.up[1]], k);
+            self.line_angle(self.store.u[3 * k + 2] + self.base.base[3 * k + 2])
+        } else {
+            self.theta
+        };
+        self.place_on_line(
+            k - 1,
+            [p[0] + l * self.up[0], p[1] + l * self.up[1]],
+            k,
+            theta,
+        );
+    }
+
+    /// The angle of the line down from the top (`−up`) on the branch nearest `near`, rad.
+    fn line_angle(&self, near: f64) -> f64 {
+        let down = (-self.up[1]).atan2(-self.up[0]);
+        near + ((down - near + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI)
     }
 
     /// Paid in: node `k + 1` becomes the top (at the exit, or `l` down the line from node `k`) and
@@ -168,7 +186,14 @@ impl Lay {
             Top::Exit => self.place_at_exit(k + 1, k),
             Top::Moving => {
                 let p = self.at(k);
-                self.place_on_line(k + 1, [p[0] - l * self.up[0], p[1] - l * self.up[1]], k);
+                // The wire's new top at the wire's angle (as it leaves), the pipe's at the tower's.
+                let theta = if k + 1 < self.pipe_end {
+                    self.line_angle(self.store.u[3 * k + 5] + self.base.base[3 * k + 5])
+                } else {
+                    self.theta
+                };
+                let q = [p[0] - l * self.up[0], p[1] - l * self.up[1]];
+                self.place_on_line(k + 1, q, k, theta);
             }
         }
     }
@@ -236,14 +261,14 @@ impl Lay {
         }
     }
 
-    /// Puts node `g` at `p` on the tower's (or the wire's) line, at the tower's angle, moving with
-    /// node `like`.
-    fn place_on_line(&mut self, g: usize, p: [f64; 2], like: usize) {
+    /// Puts node `g` at `p` on the tower's (or the wire's) line, at the angle `theta` (the tower's,
+    /// or the wire's line), moving with node `like`, not turning.
+    fn place_on_line(&mut self, g: usize, p: [f64; 2], like: usize, theta: f64) {
         let b = &self.base.base;
         let s = &mut self.store;
         s.u[3 * g] = p[0] - b[3 * g];
         s.u[3 * g + 1] = p[1] - b[3 * g + 1];
-        s.u[3 * g + 2] = self.theta - b[3 * g + 2];
+        s.u[3 * g + 2] = theta - b[3 * g + 2];
         for c in 0..2 {
             s.v[3 * g + c] = s.v[3 * like + c];
             s.a[3 * g + c] = s.a[3 * like + c];

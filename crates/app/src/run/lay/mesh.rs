@@ -80,9 +80,9 @@ pub(super) fn material_mesh(line: &LineModel, spec: &LaySpec) -> (LineModel, usi
 }
 
 /// A lay-down's station height (`[lay.wire] station_height`), m: the scene's, else a quarter of the
-/// pipe's bending length `λ = (EI/W')^(1/3)` at its last end (10.2 m for the 12-inch pipe: held
-/// from up to 60 m the end lands, from 80 m and higher the run stops, `validation/lay.md` §7);
-/// NaN without a lay-down.
+/// pipe's bending length `λ = (EI/W')^(1/3)` at its last end (10.2 m for the 12-inch pipe; held
+/// from higher up, the end swings ahead of the vessel and the standing vessel presses the
+/// touchdown zone, `validation/lay.md` §7); NaN without a lay-down.
 pub(super) fn station_height(full: &LineModel, pipe_end: usize, spec: &LaySpec) -> f64 {
     let Some(w) = spec.lay_down else {
         return f64::NAN;
