@@ -720,6 +720,47 @@ fn a_lay_down_held_from_high_up_lands() {
     assert!(r.cuts <= 5, "{} step cuts", r.cuts);
 }
 
+/// The lay vessel meets the waves where it is: the tower's exit in `jlay-12in-hs2.toml` (Hs 2 m,
+/// Tp 10 s; here at 0.1 m/s for 1000 s, 100 m of travel against a 156 m wave) is, at every frame,
+/// its start plus the vessel's travel plus the hang-off motion of a vessel standing where the
+/// lay vessel then is (1e-6 m). Taken at the start position (the phase not following the
+/// vessel), it is off by up to 0.43 m (at least 0.1 m asserted).
+#[test]
+fn the_lay_vessel_meets_the_waves_where_it_is() {
+    let text = case("jlay-12in-hs2.toml")
+        .replace("duration = 20100.0 ", "duration = 1000.0 ")
+        .replace("speed = 0.025 ", "speed = 0.1 ");
+    let files = catena::scene::DirResolver::beside(&root().join("cases/lay/jlay-12in-hs2.toml"));
+    let scene = RiserScene::parse("lay.toml", &text, &files).expect("scene");
+    let r = lay::simulate_lay(scene, &mut |_| true).expect("lay");
+    assert!(r.stop.is_none(), "{:?}", r.stop);
+    let vessel = r.dynamic.vessel.clone().expect("a vessel");
+    let waves = r.dynamic.environment.waves.clone().expect("waves");
+    let (f, rec) = (&r.frames, &r.records);
+    assert_eq!(f.time[0], 0.0);
+    let exit0 = f.exit[0];
+    let (mut worst, mut off) = (0.0f64, 0.0f64);
+    for (j, &t) in f.time.iter().enumerate() {
+        let k = rec.time.iter().position(|&x| x == t).expect("a record");
+        let x = rec.vessel_x[k];
+        let mut there = vessel.clone();
+        there.origin_x += x;
+        let m = there.motion(&waves, t).displacement;
+        let start = vessel.motion(&waves, t).displacement;
+        let at = [exit0[0] + x + m[0], exit0[1] + m[1]];
+        for c in 0..2 {
+            worst = worst.max((f.exit[j][c] - at[c]).abs());
+            off = off.max((m[c] - start[c]).abs());
+        }
+    }
+    println!(
+        "{} frames: the exit within {worst:.2e} m; the start's phase off by up to {off:.3} m",
+        f.time.len()
+    );
+    assert!(worst < 1e-6, "{worst}");
+    assert!(off > 0.1, "{off}");
+}
+
 /// When the vessel of a lay-down stood still for good (the first record of the last run of equal
 /// positions), s, and the pipe's end's height above the mudline in the first frame from then (node
 /// 250: the wire's 250 elements of 1 m lie above it), m.

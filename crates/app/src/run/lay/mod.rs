@@ -39,9 +39,10 @@
 //! since the last time are frozen: the lowest node still in the window is held where it lies, and
 //! its as-laid embedment is taken ([`laid`]).
 //!
-//! Simplifications: the vessel's wave-driven motion is that of its start position (its phase in
-//! the waves does not follow the vessel along the route); its pitch turns a hinged tower's spring
-//! but not a clamped tower. The lay's records are kept in memory and written when the run ends
+//! The vessel's wave-driven motion follows it along the route: its RAO origin moves with it, so it
+//! meets the waves at its own position and at the frequency of encounter
+//! ([`catena_fe::vessel::Vessel::track`], set each step). Simplification: its pitch turns a hinged
+//! tower's spring but not a clamped tower. The lay's records are kept in memory and written when the run ends
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
 pub mod checkpoint;
@@ -533,6 +534,10 @@ impl Lay {
         let s = rate * (1.0 + self.eps);
         let (d0, vel) = self.top_motion(speed, s, dt);
         let t = self.state.t;
+        // The vessel meets the waves where it is: its RAO origin moves with it over the step.
+        if let (Some(v), Some(start)) = (&mut self.dm.vessel, &self.dspec.vessel) {
+            v.track(start.origin_x + self.vessel_x, t, speed);
+        }
         // Linear over the step (the series' last point beyond it, so that the velocity at the
         // step's end is the step's).
         self.dm.motion = Some(TopMotion::Series(vec![
