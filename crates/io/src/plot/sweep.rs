@@ -1,11 +1,12 @@
 //! The sweep's figure (`sweep.png`), in the manner of the paper's Figures 9–11: the minimum fatigue
-//! life (log scale) against the first parameter, one line per value of the others, and beside it the
-//! touchdown-zone moment range and the largest penetration against the same parameter. Failed points
+//! life (log scale) against the first parameter that takes more than one value (the first, if none
+//! does), one line per value of the others, and beside it the touchdown-zone moment range and the
+//! largest penetration against the same parameter. Failed points
 //! are left out (and named in `sweep.csv`).
 
 use std::path::Path;
 
-use catena::studies::sweep::{Plan, PointSummary};
+use catena::studies::sweep::{Parameter, Plan, PointSummary};
 use catena::AppError;
 use plotters::prelude::*;
 
@@ -47,11 +48,21 @@ pub fn key_label(key: &str) -> String {
     format!("{key}{unit}")
 }
 
-/// The sweep's points as series: one per combination of the parameters after the first, in the
-/// plan's order, labelled `key = value, …`.
+/// The parameter on the x axis: the first that takes more than one value (a parameter held at one
+/// value, such as Figure 11's su0 = 0, would put every point on one vertical), else the first.
+fn x_parameter(parameters: &[Parameter]) -> usize {
+    parameters
+        .iter()
+        .position(|p| p.values.len() > 1)
+        .unwrap_or(0)
+}
+
+/// The sweep's points as series: one per combination of the parameters other than the x axis's
+/// (`ix`), in the plan's order, labelled `key = value, …`.
 fn series_by_the_others<'p>(
     plan: &Plan,
     points: &'p [PointSummary],
+    ix: usize,
 ) -> Vec<(String, Vec<&'p PointSummary>)> {
     let mut series: Vec<(String, Vec<&PointSummary>)> = Vec::new();
     for p in points {
@@ -59,7 +70,9 @@ fn series_by_the_others<'p>(
             .parameters
             .iter()
             .zip(&p.values)
-            .skip(1)
+            .enumerate()
+            .filter(|&(i, _)| i != ix)
+            .map(|(_, pv)| pv)
             .map(|(par, v)| format!("{} = {v}", par.key))
             .collect::<Vec<_>>()
             .join(", ");
@@ -79,8 +92,8 @@ fn least_and_greatest(v: &[f64]) -> (f64, f64) {
         })
 }
 
-/// Writes `sweep.png` (nothing to draw when the first parameter is not numeric or no point has a
-/// life).
+/// Writes `sweep.png` (nothing to draw when the x axis's parameter is not numeric or no point has
+/// a life).
 pub fn figure(
     path: &Path,
     plan: &Plan,
@@ -90,11 +103,12 @@ pub fn figure(
     init_fonts();
     let err = plot_err(path);
     let perr = plot_err::<String>(path);
-    let series = series_by_the_others(plan, points);
+    let ix = x_parameter(&plan.parameters);
+    let series = series_by_the_others(plan, points, ix);
     let xs: Vec<f64> = points
         .iter()
         .filter(|p| p.failed.is_none())
-        .filter_map(|p| number(&p.values[0]))
+        .filter_map(|p| number(&p.values[ix]))
         .collect();
     if xs.is_empty() {
         return Ok(());
@@ -114,7 +128,7 @@ pub fn figure(
         let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
         let root = root.titled(title, ("sans-serif", 24)).map_err(&err)?;
         let areas = root.split_evenly((1, 3));
-        let key = &plan.parameters[0].key;
+        let key = &plan.parameters[ix].key;
         type Pick = fn(&PointSummary) -> f64;
         let panels: [(&str, &str, Pick, bool); 3] = [
             (
@@ -165,7 +179,7 @@ pub fn figure(
             let points_of = |pts: &Vec<&PointSummary>| -> Vec<(f64, f64)> {
                 pts.iter()
                     .filter(|p| p.failed.is_none())
-                    .filter_map(|p| Some((number(&p.values[0])?, pick(p))))
+                    .filter_map(|p| Some((number(&p.values[ix])?, pick(p))))
                     .filter(|(_, y)| y.is_finite() && (!log_y || *y > 0.0))
                     .collect()
             };
@@ -228,4 +242,28 @@ pub fn figure(
         }
     }
     write_image(path, &rgb, size)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parameter(key: &str, values: &[f64]) -> Parameter {
+        Parameter {
+            key: key.into(),
+            values: values.iter().map(|&v| toml::Value::Float(v)).collect(),
+        }
+    }
+
+    /// Figure 11's full points hold su0 at 0 and vary the gradient: the gradient is the x axis
+    /// (with su0 first it put the three points on one vertical); a sweep varying its first
+    /// parameter keeps it there, and one varying none draws against the first.
+    #[test]
+    fn the_x_axis_is_the_first_parameter_that_varies() {
+        let su0 = parameter("seabed.su0", &[0.0]);
+        let grad = parameter("seabed.su_gradient", &[650.0, 1300.0, 5000.0]);
+        assert_eq!(x_parameter(&[su0.clone(), grad.clone()]), 1);
+        assert_eq!(x_parameter(&[grad.clone(), su0.clone()]), 0);
+        assert_eq!(x_parameter(&[su0.clone(), su0]), 0);
+    }
 }
