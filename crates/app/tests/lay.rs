@@ -23,6 +23,12 @@ fn scene(text: &str) -> RiserScene {
     RiserScene::parse("lay.toml", text, &NoFiles).expect("scene")
 }
 
+/// A scene of `cases/lay/` whose files (an RAO table) are read beside its cases.
+fn scene_with_files(text: &str) -> RiserScene {
+    let dir = catena::scene::DirResolver::beside(&root().join("cases/lay/x.toml"));
+    RiserScene::parse("lay.toml", text, &dir).expect("scene")
+}
+
 fn lay_of(text: &str) -> LayRun {
     let r = lay::simulate_lay(scene(text), &mut |_| true).expect("lay");
     assert!(r.stop.is_none(), "the lay stopped: {:?}", r.stop);
@@ -404,8 +410,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
     let text = case("jlay-12in-tension-surge.toml")
         .replace("length = 100.0                # m of pipe laid [A]", "")
         .replace("duration = 4500.0 ", "duration = 600.0 ");
-    let dir = catena::scene::DirResolver::beside(&root().join("cases/lay/x.toml"));
-    let scene = || RiserScene::parse("surge.toml", &text, &dir).expect("scene");
+    let scene = || scene_with_files(&text);
     let solve = || statics::solve(lay::statics_scene(scene())).expect("statics");
     let whole = lay::lay(solve(), &mut |_| true).expect("lay");
     assert!(whole.stop.is_none());
@@ -730,9 +735,7 @@ fn the_lay_vessel_meets_the_waves_where_it_is() {
     let text = case("jlay-12in-hs2.toml")
         .replace("duration = 20100.0 ", "duration = 1000.0 ")
         .replace("speed = 0.025 ", "speed = 0.1 ");
-    let files = catena::scene::DirResolver::beside(&root().join("cases/lay/jlay-12in-hs2.toml"));
-    let scene = RiserScene::parse("lay.toml", &text, &files).expect("scene");
-    let r = lay::simulate_lay(scene, &mut |_| true).expect("lay");
+    let r = lay::simulate_lay(scene_with_files(&text), &mut |_| true).expect("lay");
     assert!(r.stop.is_none(), "{:?}", r.stop);
     let vessel = r.dynamic.vessel.clone().expect("a vessel");
     let waves = r.dynamic.environment.waves.clone().expect("waves");

@@ -362,17 +362,7 @@ fn pure_pitch_transfer_and_exact_derivatives() {
         assert!(m.motions[0].abs() < 1e-15 && m.motions[1].abs() < 1e-15);
         assert!((m.displacement[0] - theta * -20.0).abs() < 1e-12);
         assert!((m.displacement[1] - -theta * -38.0).abs() < 1e-12);
-        let h = 1e-4;
-        let (p, q) = (v.motion(&waves, time + h), v.motion(&waves, time - h));
-        for j in 0..2 {
-            let dv = (p.displacement[j] - q.displacement[j]) / (2.0 * h);
-            let da = (p.velocity[j] - q.velocity[j]) / (2.0 * h);
-            assert!((m.velocity[j] - dv).abs() < 1e-6, "velocity {j} at {time}");
-            assert!(
-                (m.acceleration[j] - da).abs() < 1e-6,
-                "acceleration {j} at {time}"
-            );
-        }
+        assert_exact_derivatives(&v, &waves, time);
     }
     // Waves along −x: the fore-aft symmetric hull pitches the other way.
     waves.direction = Direction::MinusX;
@@ -420,23 +410,30 @@ fn a_vessel_under_way_meets_the_waves_at_its_own_position() {
                 "at {time}"
             );
         }
-        let h = 1e-4;
-        let (p, q) = (
-            moving.motion(&waves, time + h),
-            moving.motion(&waves, time - h),
-        );
-        for j in 0..2 {
-            let dv = (p.displacement[j] - q.displacement[j]) / (2.0 * h);
-            let da = (p.velocity[j] - q.velocity[j]) / (2.0 * h);
-            assert!((m.velocity[j] - dv).abs() < 1e-6, "velocity {j} at {time}");
-            assert!(
-                (m.acceleration[j] - da).abs() < 1e-6,
-                "acceleration {j} at {time}"
-            );
+        let dv = assert_exact_derivatives(&moving, &waves, time);
+        for (j, (standing, dv)) in s.velocity.iter().zip(dv).enumerate() {
             // The standing vessel's velocity is not the moving one's.
-            assert!((s.velocity[j] - dv).abs() > 1e-3, "{j} at {time}");
+            assert!((standing - dv).abs() > 1e-3, "{j} at {time}");
         }
     }
+}
+
+/// Asserts that the hang-off's velocity and acceleration at `time` are the central differences
+/// of its displacement and velocity (1e-6); returns the displacement's difference quotients.
+fn assert_exact_derivatives(v: &Vessel, waves: &Waves, time: f64) -> [f64; 2] {
+    let m = v.motion(waves, time);
+    let h = 1e-4;
+    let (p, q) = (v.motion(waves, time + h), v.motion(waves, time - h));
+    std::array::from_fn(|j| {
+        let dv = (p.displacement[j] - q.displacement[j]) / (2.0 * h);
+        let da = (p.velocity[j] - q.velocity[j]) / (2.0 * h);
+        assert!((m.velocity[j] - dv).abs() < 1e-6, "velocity {j} at {time}");
+        assert!(
+            (m.acceleration[j] - da).abs() < 1e-6,
+            "acceleration {j} at {time}"
+        );
+        dv
+    })
 }
 
 fn semi_pitch(text: &str) -> RaoTable {

@@ -175,8 +175,7 @@ impl Lay {
     /// The angle of the line down from the top (`−up`) on the branch nearest `near`, rad.
     fn line_angle(&self, near: f64) -> f64 {
         let down = (-self.up[1]).atan2(-self.up[0]);
-        near + ((down - near + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-            - std::f64::consts::PI)
+        near + catena_fe::beam::wrap(down - near)
     }
 
     /// Paid in: node `k + 1` becomes the top (at the exit, or `l` down the line from node `k`) and
