@@ -764,6 +764,69 @@ fn the_lay_vessel_meets_the_waves_where_it_is() {
     assert!(off > 0.1, "{off}");
 }
 
+/// A clamped tower pitches with its vessel (`jlay-12in-hs2.toml`, Hs 2 m, at 0.1 m/s for 300 s: 30
+/// nodes leave the tower): at every step the window's top node, whichever node of the pipe it is,
+/// is turned from the tower's angle by `−β`, the vessel's pitch where it then is (1e-9 rad), and
+/// stands on the tower's line turned by `−β` about the exit, the exit where the vessel puts it
+/// (1e-9 m). Held at the tower's own angle, or on its line unturned, it is off by the pitch (up to
+/// 0.2°, at least 1e-3 rad asserted) or by the pitch's lever (at least 1 mm).
+#[test]
+fn a_clamped_tower_pitches_with_the_vessel() {
+    let text = case("jlay-12in-hs2.toml")
+        .replace("duration = 20100.0 ", "duration = 300.0 ")
+        .replace("speed = 0.025 ", "speed = 0.1 ");
+    let st = statics::solve(lay::statics_scene(scene_with_files(&text))).expect("statics");
+    let dspec = st.scene.dynamic.clone().expect("dynamic");
+    let vessel = dspec.vessel.clone().expect("a vessel");
+    let waves = dspec.environment.waves.clone().expect("waves");
+    let mut l = lay::Lay::start(&st).expect("lay");
+    let (first0, [x0, z0, theta0]) = l.top_node();
+    let exit0 = l.exit();
+    let len = (x0 - exit0[0]).hypot(z0 - exit0[1]);
+    assert!(len > 0.5, "the top node stands above the exit: {len}");
+    let up = [(x0 - exit0[0]) / len, (z0 - exit0[1]) / len];
+    let (mut worst_angle, mut worst_line, mut pitch, mut lever) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut steps = 0;
+    while l.time() < 300.0 - 1e-6 {
+        let stop = l.run_until(l.time() + 0.1, &mut |_| true).expect("steps");
+        assert!(stop.is_none(), "{stop:?}");
+        let t = l.time();
+        let mut there = vessel.clone();
+        there.origin_x += l.vessel_travel();
+        let m = there.motion(&waves, t);
+        let beta = m.motions[2];
+        let (_, [x, z, theta]) = l.top_node();
+        worst_angle = worst_angle.max((theta - (theta0 - beta)).abs());
+        pitch = pitch.max(beta.abs());
+        let exit = [
+            exit0[0] + l.vessel_travel() + m.displacement[0],
+            exit0[1] + m.displacement[1],
+        ];
+        let (sn, cs) = (-beta).sin_cos();
+        let turned = [cs * up[0] - sn * up[1], sn * up[0] + cs * up[1]];
+        let (dx, dz) = (x - exit[0], z - exit[1]);
+        worst_line = worst_line.max((dx * turned[1] - dz * turned[0]).abs());
+        lever = lever.max((dx * up[1] - dz * up[0]).abs());
+        steps += 1;
+    }
+    let (first, _) = l.top_node();
+    println!(
+        "{steps} steps, {} nodes off the tower: the top's angle within {worst_angle:.2e} rad of the \
+         tower's turned by the pitch (up to {pitch:.2e} rad), on the turned line within \
+         {worst_line:.2e} m (off the still line by up to {lever:.2e} m)",
+        first0 - first
+    );
+    assert!(
+        first0 - first >= 25,
+        "nodes left the tower: {}",
+        first0 - first
+    );
+    assert!(worst_angle < 1e-9, "{worst_angle}");
+    assert!(worst_line < 1e-9, "{worst_line}");
+    assert!(pitch > 1e-3, "{pitch}");
+    assert!(lever > 1e-3, "{lever}");
+}
+
 /// When the vessel of a lay-down stood still for good (the first record of the last run of equal
 /// positions), s, and the pipe's end's height above the mudline in the first frame from then (node
 /// 250: the wire's 250 elements of 1 m lie above it), m.

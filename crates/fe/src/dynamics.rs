@@ -135,19 +135,7 @@ pub struct DynamicModel {
     pub settings: DynamicSettings,
 }
 
-/// The top end's prescribed state at an instant: displacement, velocity and acceleration from its
-/// static position `(x, z)`, and the vessel's pitch (rad, positive bow down).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct TopState {
-    /// Displacement, m.
-    pub d: [f64; 2],
-    /// Velocity, m/s.
-    pub v: [f64; 2],
-    /// Acceleration, m/s².
-    pub a: [f64; 2],
-    /// Vessel pitch, rad (0 without a vessel).
-    pub pitch: f64,
-}
+pub use crate::motion::TopState;
 
 impl DynamicModel {
     /// The loads of the dynamics ([`crate::loads`]): the seabed, the hydrodynamics and the
@@ -180,6 +168,7 @@ impl DynamicModel {
                 s.a[k] += vm.acceleration[k];
             }
             s.pitch = vm.motions[2];
+            s.pitch_rates = vm.pitch_rates;
         }
         Some(s)
     }
@@ -467,7 +456,10 @@ fn attempt(
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
     sc.predict((&state.u, &state.v, &state.a), careful, &mut ws.u);
     let top = dm.top_at(t1);
-    let prescribed = top.map(|s| (s.d, s.v, s.a));
+    // A top that holds its rotation turns with the vessel's pitch since the step's start.
+    let turns = ws.top_turns && dm.vessel.is_some();
+    let prescribed =
+        top.map(|s| boundary::TopPrescribed::new(s, turns.then(|| dm.top_at(state.t))));
     // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
     wave_kinematics(dm, state, t1, ws);

@@ -115,3 +115,19 @@ impl TopMotion {
         }
     }
 }
+
+/// The top end's prescribed state at an instant: displacement, velocity and acceleration from its
+/// static position `(x, z)`, and the vessel's pitch (rad, positive bow down).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TopState {
+    /// Displacement, m.
+    pub d: [f64; 2],
+    /// Velocity, m/s.
+    pub v: [f64; 2],
+    /// Acceleration, m/s².
+    pub a: [f64; 2],
+    /// Vessel pitch, rad (0 without a vessel).
+    pub pitch: f64,
+    /// Its rate and acceleration, rad/s and rad/s².
+    pub pitch_rates: [f64; 2],
+}

@@ -191,6 +191,9 @@ pub struct VesselMotion {
     pub velocity: [f64; 2],
     /// Hang-off acceleration, m/s².
     pub acceleration: [f64; 2],
+    /// Pitch rate and pitch acceleration, rad/s and rad/s² (positive bow down, ramped): what turns a
+    /// top held by the vessel ([`crate::boundary`]).
+    pub pitch_rates: [f64; 2],
 }
 
 impl Vessel {
@@ -248,6 +251,7 @@ impl Vessel {
             displacement: [s1.0 + th.0 * dz, s3.0 - th.0 * dx],
             velocity: [s1.1 + th.1 * dz, s3.1 - th.1 * dx],
             acceleration: [s1.2 + th.2 * dz, s3.2 - th.2 * dx],
+            pitch_rates: [th.1, th.2],
         }
     }
 }

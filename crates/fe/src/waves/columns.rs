@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use super::{Component, Direction};
 use crate::fastmath::{sin_cos, LANES};
 
-/// Per-time scratch for [`Waves::kinematics_with`]: the time phases at the last `t` and, for a
+/// Per-time scratch for [`crate::waves::Waves::kinematics_with`]: the time phases at the last `t` and, for a
 /// node near the surface, each component's phase sine and cosine.
 #[derive(Debug, Clone, Default)]
 pub struct WaveScratch {

@@ -94,6 +94,8 @@ impl Lay {
     /// The top node's displacement at the step's start and its velocity over the step of `dt`, the
     /// vessel at `speed` and the pipe paid out at `s` (m/s, at the top's strain); at the exit, the
     /// top element's rest length at the step's end is set (also for the sub-steps of a step cut).
+    /// Above the exit the node is on the tower's line as the vessel's pitch turns it (rigidly, by
+    /// `−β`: [`Lay::tower_up`]), the velocity the chord over the step.
     pub(super) fn top_motion(&mut self, speed: f64, s: f64, dt: f64) -> ([f64; 2], [f64; 2]) {
         let b = &self.dm.placement.base;
         match self.top() {
@@ -104,6 +106,21 @@ impl Lay {
                 self.ws.top_rest_length_changed(&self.dm.line);
                 (d0, [speed, 0.0])
             }
+            Top::Moving if self.pitches() => {
+                let t = self.state.t;
+                let (up0, up1) = (self.tower_up(t), self.tower_up(t + dt));
+                let d1 = self.d_top - s * dt;
+                let x1 = self.vessel_x + speed * dt;
+                let d0 = [
+                    self.exit0[0] + self.vessel_x + self.d_top * up0[0] - b[0],
+                    self.exit0[1] + self.d_top * up0[1] - b[1],
+                ];
+                let end = [
+                    self.exit0[0] + x1 + d1 * up1[0] - b[0],
+                    self.exit0[1] + d1 * up1[1] - b[1],
+                ];
+                (d0, [(end[0] - d0[0]) / dt, (end[1] - d0[1]) / dt])
+            }
             Top::Moving => (
                 [
                     self.exit0[0] + self.vessel_x + self.d_top * self.up[0] - b[0],
@@ -112,6 +129,38 @@ impl Lay {
                 [speed - s * self.up[0], -s * self.up[1]],
             ),
         }
+    }
+
+    /// Whether the tower pitches with the vessel: a `[vessel]` in waves.
+    fn pitches(&self) -> bool {
+        self.dm.vessel.is_some() && self.dm.environment.waves.is_some()
+    }
+
+    /// The vessel's pitch at `t`, rad (positive bow down; 0 where the tower does not pitch).
+    pub(super) fn pitch_at(&self, t: f64) -> f64 {
+        match (&self.dm.vessel, &self.dm.environment.waves) {
+            (Some(v), Some(w)) => v.motion(w, t).motions[2],
+            _ => 0.0,
+        }
+    }
+
+    /// The tower's upward direction at `t`, turned by the vessel's pitch.
+    fn pitched_up(&self, t: f64) -> [f64; 2] {
+        if !self.pitches() {
+            return self.up;
+        }
+        let (sn, cs) = (-self.pitch_at(t)).sin_cos();
+        let u = self.up;
+        [cs * u[0] - sn * u[1], sn * u[0] + cs * u[1]]
+    }
+
+    /// The upward direction of the top's line at `t`: the tower's, turned by the vessel's pitch
+    /// (counter-clockwise by `−β`) while the top is the pipe's; the wire's own over the sheave.
+    fn tower_up(&self, t: f64) -> [f64; 2] {
+        if self.first < self.pipe_end {
+            return self.up;
+        }
+        self.pitched_up(t)
     }
 
     /// The tension at the tower's exit: the top node's; with a moving top, less the submerged
@@ -131,10 +180,10 @@ impl Lay {
         let top = self.at_window(0);
         match self.top() {
             Top::Exit => top,
-            Top::Moving => [
-                top[0] - self.d_top * self.up[0],
-                top[1] - self.d_top * self.up[1],
-            ],
+            Top::Moving => {
+                let up = self.tower_up(self.state.t);
+                [top[0] - self.d_top * up[0], top[1] - self.d_top * up[1]]
+            }
         }
     }
 
@@ -162,14 +211,15 @@ impl Lay {
             self.up = [dx / len, dz / len];
             self.line_angle(self.store.u[3 * k + 2] + self.base.base[3 * k + 2])
         } else {
-            self.theta
+            // On the tower, turned with the vessel ([`catena_fe::boundary`]).
+            self.theta - self.pitch_at(self.state.t)
         };
-        self.place_on_line(
-            k - 1,
-            [p[0] + l * self.up[0], p[1] + l * self.up[1]],
-            k,
-            theta,
-        );
+        let up = if k - 1 < self.pipe_end {
+            self.up
+        } else {
+            self.pitched_up(self.state.t)
+        };
+        self.place_on_line(k - 1, [p[0] + l * up[0], p[1] + l * up[1]], k, theta);
     }
 
     /// The angle of the line down from the top (`−up`) on the branch nearest `near`, rad.
@@ -186,12 +236,14 @@ impl Lay {
             Top::Moving => {
                 let p = self.at(k);
                 // The wire's new top at the wire's angle (as it leaves), the pipe's at the tower's.
-                let theta = if k + 1 < self.pipe_end {
-                    self.line_angle(self.store.u[3 * k + 5] + self.base.base[3 * k + 5])
+                let (theta, up) = if k + 1 < self.pipe_end {
+                    let near = self.store.u[3 * k + 5] + self.base.base[3 * k + 5];
+                    (self.line_angle(near), self.up)
                 } else {
-                    self.theta
+                    let t = self.state.t;
+                    (self.theta - self.pitch_at(t), self.pitched_up(t))
                 };
-                let q = [p[0] - l * self.up[0], p[1] - l * self.up[1]];
+                let q = [p[0] - l * up[0], p[1] - l * up[1]];
                 self.place_on_line(k + 1, q, k, theta);
             }
         }

@@ -41,8 +41,10 @@
 //!
 //! The vessel's wave-driven motion follows it along the route: its RAO origin moves with it, so it
 //! meets the waves at its own position and at the frequency of encounter
-//! ([`catena_fe::vessel::Vessel::track`], set each step). Simplification: its pitch turns a hinged
-//! tower's spring but not a clamped tower. The lay's records are kept in memory and written when the run ends
+//! ([`catena_fe::vessel::Vessel::track`], set each step). Its pitch turns the tower with it: a
+//! clamped tower's top node turns by `−β` ([`catena_fe::boundary`]), a hinged tower's spring's
+//! reference likewise, and the tower's line above the exit (where the top node stands and a new
+//! top is put) turns about the exit. The lay's records are kept in memory and written when the run ends
 //! (also when it fails or is interrupted: everything up to the last converged step).
 
 pub mod checkpoint;
@@ -461,6 +463,24 @@ impl Lay {
         self.last - self.first + 1
     }
 
+    /// The window's top node now: its material index and its position and angle `(x, z, θ)`, m
+    /// and rad.
+    pub fn top_node(&self) -> (usize, [f64; 3]) {
+        let [x, z] = self.at_window(0);
+        let theta = self.base.base[3 * self.first + 2] + self.state.u[2];
+        (self.first, [x, z, theta])
+    }
+
+    /// The tower's exit now (or the sheave, with the wire at the top), m.
+    pub fn exit(&self) -> [f64; 2] {
+        self.exit_point()
+    }
+
+    /// How far the vessel has moved along the route, m.
+    pub fn vessel_travel(&self) -> f64 {
+        self.vessel_x
+    }
+
     /// Steps to `t_end` (or to the end of the lay, `[lay] length`); the reason it stopped early, if
     /// it did.
     pub fn run_until(
@@ -532,12 +552,12 @@ impl Lay {
         let rate = self.payout_rate(dt);
         let speed = self.vessel_speed_at(self.state.t + 0.5 * dt);
         let s = rate * (1.0 + self.eps);
-        let (d0, vel) = self.top_motion(speed, s, dt);
         let t = self.state.t;
         // The vessel meets the waves where it is: its RAO origin moves with it over the step.
         if let (Some(v), Some(start)) = (&mut self.dm.vessel, &self.dspec.vessel) {
             v.track(start.origin_x + self.vessel_x, t, speed);
         }
+        let (d0, vel) = self.top_motion(speed, s, dt);
         // Linear over the step (the series' last point beyond it, so that the velocity at the
         // step's end is the step's).
         self.dm.motion = Some(TopMotion::Series(vec![
