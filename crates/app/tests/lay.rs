@@ -781,7 +781,7 @@ fn a_clamped_tower_pitches_with_the_vessel() {
     let waves = dspec.environment.waves.clone().expect("waves");
     let mut l = lay::Lay::start(&st).expect("lay");
     let (first0, [x0, z0, theta0]) = l.top_node();
-    let exit0 = l.exit();
+    let exit0 = l.exit_point();
     let len = (x0 - exit0[0]).hypot(z0 - exit0[1]);
     assert!(len > 0.5, "the top node stands above the exit: {len}");
     let up = [(x0 - exit0[0]) / len, (z0 - exit0[1]) / len];

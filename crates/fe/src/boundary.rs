@@ -74,17 +74,14 @@ pub struct TopPrescribed {
 }
 
 impl TopPrescribed {
-    /// The top's state `at` the step's end; `from`, with a top that turns with the vessel, its
-    /// state at the step's start (`None` inside: no vessel, which turns nothing).
-    pub fn new(at: TopState, from: Option<Option<TopState>>) -> Self {
+    /// The top's state `at` the step's end; `before`, for a top that turns with the vessel, the
+    /// vessel's pitch at the step's start.
+    pub fn new(at: TopState, before: Option<f64>) -> Self {
         Self {
             d: at.d,
             v: at.v,
             a: at.a,
-            turn: from.map(|s0| {
-                let before = s0.map_or(0.0, |s0| s0.pitch);
-                [-(at.pitch - before), -at.pitch_rates[0], -at.pitch_rates[1]]
-            }),
+            turn: before.map(|b| [-(at.pitch - b), -at.pitch_rates[0], -at.pitch_rates[1]]),
         }
     }
 }

@@ -457,9 +457,13 @@ fn attempt(
     sc.predict((&state.u, &state.v, &state.a), careful, &mut ws.u);
     let top = dm.top_at(t1);
     // A top that holds its rotation turns with the vessel's pitch since the step's start.
-    let turns = ws.top_turns && dm.vessel.is_some();
-    let prescribed =
-        top.map(|s| boundary::TopPrescribed::new(s, turns.then(|| dm.top_at(state.t))));
+    let turns = dm.vessel.is_some()
+        && ws
+            .constraints
+            .iter()
+            .any(|c| c.by == boundary::Prescribed::TopRotation);
+    let before = turns.then(|| dm.top_at(state.t).map_or(0.0, |s0| s0.pitch));
+    let prescribed = top.map(|s| boundary::TopPrescribed::new(s, before));
     // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.
     ws.fj_rotation = top.map_or(0.0, |s| -s.pitch);
     wave_kinematics(dm, state, t1, ws);

@@ -62,8 +62,6 @@ pub struct DynWorkspace {
     pub(super) free_runs: Vec<(usize, usize, usize)>,
     /// The prescribed dofs and what prescribes them ([`crate::boundary`]).
     pub(super) constraints: Vec<Constraint>,
-    /// Whether the top holds its rotation (it then turns with a vessel's pitch).
-    pub(super) top_turns: bool,
     /// The residual of every dof (3 per node) before its free equations are taken.
     pub(super) g_all: Vec<f64>,
     /// The residual's reference norm ([`crate::statics::residual_reference`]) of the Model.
@@ -91,9 +89,6 @@ impl DynWorkspace {
         Ok(Self {
             reference: crate::statics::residual_reference(line),
             free_runs,
-            top_turns: boundary::constraints(line)
-                .iter()
-                .any(|c| c.by == boundary::Prescribed::TopRotation),
             constraints: boundary::constraints(line),
             g_all: vec![0.0; 3 * n],
             asm: Assembler::new(line)?,

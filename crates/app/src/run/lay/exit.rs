@@ -106,28 +106,24 @@ impl Lay {
                 self.ws.top_rest_length_changed(&self.dm.line);
                 (d0, [speed, 0.0])
             }
-            Top::Moving if self.pitches() => {
-                let t = self.state.t;
-                let (up0, up1) = (self.tower_up(t), self.tower_up(t + dt));
-                let d1 = self.d_top - s * dt;
-                let x1 = self.vessel_x + speed * dt;
+            Top::Moving => {
+                let up = self.tower_up(self.state.t);
                 let d0 = [
-                    self.exit0[0] + self.vessel_x + self.d_top * up0[0] - b[0],
-                    self.exit0[1] + self.d_top * up0[1] - b[1],
+                    self.exit0[0] + self.vessel_x + self.d_top * up[0] - b[0],
+                    self.exit0[1] + self.d_top * up[1] - b[1],
                 ];
+                if !self.pitches() {
+                    return (d0, [speed - s * up[0], -s * up[1]]);
+                }
+                // The chord to where the node is at the step's end, on the tower turned then.
+                let up1 = self.tower_up(self.state.t + dt);
+                let (d1, x1) = (self.d_top - s * dt, self.vessel_x + speed * dt);
                 let end = [
                     self.exit0[0] + x1 + d1 * up1[0] - b[0],
                     self.exit0[1] + d1 * up1[1] - b[1],
                 ];
                 (d0, [(end[0] - d0[0]) / dt, (end[1] - d0[1]) / dt])
             }
-            Top::Moving => (
-                [
-                    self.exit0[0] + self.vessel_x + self.d_top * self.up[0] - b[0],
-                    self.exit0[1] + self.d_top * self.up[1] - b[1],
-                ],
-                [speed - s * self.up[0], -s * self.up[1]],
-            ),
         }
     }
 
@@ -144,23 +140,13 @@ impl Lay {
         }
     }
 
-    /// The tower's upward direction at `t`, turned by the vessel's pitch.
-    fn pitched_up(&self, t: f64) -> [f64; 2] {
-        if !self.pitches() {
-            return self.up;
-        }
-        let (sn, cs) = (-self.pitch_at(t)).sin_cos();
-        let u = self.up;
-        [cs * u[0] - sn * u[1], sn * u[0] + cs * u[1]]
-    }
-
     /// The upward direction of the top's line at `t`: the tower's, turned by the vessel's pitch
     /// (counter-clockwise by `−β`) while the top is the pipe's; the wire's own over the sheave.
     fn tower_up(&self, t: f64) -> [f64; 2] {
         if self.first < self.pipe_end {
             return self.up;
         }
-        self.pitched_up(t)
+        turned(self.up, self.pitch_at(t))
     }
 
     /// The tension at the tower's exit: the top node's; with a moving top, less the submerged
@@ -176,7 +162,7 @@ impl Lay {
     }
 
     /// The tower's exit (or the sheave) now, m.
-    pub(super) fn exit_point(&self) -> [f64; 2] {
+    pub fn exit_point(&self) -> [f64; 2] {
         let top = self.at_window(0);
         match self.top() {
             Top::Exit => top,
@@ -200,7 +186,7 @@ impl Lay {
             self.release(k);
         }
         let p = self.at(k);
-        let theta = if k - 1 < self.pipe_end {
+        let (theta, up) = if k - 1 < self.pipe_end {
             // Over the sheave, the wire runs out along its own line, not the tower's, and at its
             // angle: the tower's would bend the top element and kick the top node's rotation,
             // which the pinned sheave leaves to ring (and, with the wrap of a corotational
@@ -209,15 +195,12 @@ impl Lay {
             let (dx, dz) = (p[0] - below[0], p[1] - below[1]);
             let len = dx.hypot(dz);
             self.up = [dx / len, dz / len];
-            self.line_angle(self.store.u[3 * k + 2] + self.base.base[3 * k + 2])
+            let near = self.store.u[3 * k + 2] + self.base.base[3 * k + 2];
+            (self.line_angle(near), self.up)
         } else {
             // On the tower, turned with the vessel ([`catena_fe::boundary`]).
-            self.theta - self.pitch_at(self.state.t)
-        };
-        let up = if k - 1 < self.pipe_end {
-            self.up
-        } else {
-            self.pitched_up(self.state.t)
+            let beta = self.pitch_at(self.state.t);
+            (self.theta - beta, turned(self.up, beta))
         };
         self.place_on_line(k - 1, [p[0] + l * up[0], p[1] + l * up[1]], k, theta);
     }
@@ -240,8 +223,8 @@ impl Lay {
                     let near = self.store.u[3 * k + 5] + self.base.base[3 * k + 5];
                     (self.line_angle(near), self.up)
                 } else {
-                    let t = self.state.t;
-                    (self.theta - self.pitch_at(t), self.pitched_up(t))
+                    let beta = self.pitch_at(self.state.t);
+                    (self.theta - beta, turned(self.up, beta))
                 };
                 let q = [p[0] - l * up[0], p[1] - l * up[1]];
                 self.place_on_line(k + 1, q, k, theta);
@@ -334,4 +317,14 @@ impl Lay {
             }
         }
     }
+}
+
+/// `up` turned with a vessel pitched by `beta` (counter-clockwise by `−β`); `up` itself, to the
+/// bit, at `β = 0` (no vessel).
+fn turned(up: [f64; 2], beta: f64) -> [f64; 2] {
+    if beta == 0.0 {
+        return up;
+    }
+    let (sn, cs) = (-beta).sin_cos();
+    [cs * up[0] - sn * up[1], sn * up[0] + cs * up[1]]
 }

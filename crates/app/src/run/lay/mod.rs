@@ -471,11 +471,6 @@ impl Lay {
         (self.first, [x, z, theta])
     }
 
-    /// The tower's exit now (or the sheave, with the wire at the top), m.
-    pub fn exit(&self) -> [f64; 2] {
-        self.exit_point()
-    }
-
     /// How far the vessel has moved along the route, m.
     pub fn vessel_travel(&self) -> f64 {
         self.vessel_x
