@@ -186,23 +186,30 @@ impl Lay {
             self.release(k);
         }
         let p = self.at(k);
-        let (theta, up) = if k - 1 < self.pipe_end {
-            // Over the sheave, the wire runs out along its own line, not the tower's, and at its
-            // angle: the tower's would bend the top element and kick the top node's rotation,
-            // which the pinned sheave leaves to ring (and, with the wrap of a corotational
-            // angle, to spin).
+        if k - 1 < self.pipe_end {
+            // Over the sheave, the wire runs out along its own line, not the tower's.
             let below = self.at(k + 1);
             let (dx, dz) = (p[0] - below[0], p[1] - below[1]);
             let len = dx.hypot(dz);
             self.up = [dx / len, dz / len];
-            let near = self.store.u[3 * k + 2] + self.base.base[3 * k + 2];
-            (self.line_angle(near), self.up)
-        } else {
-            // On the tower, turned with the vessel ([`catena_fe::boundary`]).
-            let beta = self.pitch_at(self.state.t);
-            (self.theta - beta, turned(self.up, beta))
-        };
+        }
+        let (theta, up) = self.new_top(k - 1, k);
         self.place_on_line(k - 1, [p[0] + l * up[0], p[1] + l * up[1]], k, theta);
+    }
+
+    /// The angle and the line's upward direction of node `g` becoming the window's top on the
+    /// line. Over the sheave (a wire node) the wire's own line, at its angle on the branch nearest
+    /// node `near`'s: the tower's angle would bend the top element and kick the top node's
+    /// rotation, which the pinned sheave leaves to ring (and, with the wrap of a corotational
+    /// angle, to spin). On the tower, the tower's line and angle turned with the vessel's pitch
+    /// ([`catena_fe::boundary`]).
+    fn new_top(&self, g: usize, near: usize) -> (f64, [f64; 2]) {
+        if g < self.pipe_end {
+            let near = self.store.u[3 * near + 2] + self.base.base[3 * near + 2];
+            return (self.line_angle(near), self.up);
+        }
+        let beta = self.pitch_at(self.state.t);
+        (self.theta - beta, turned(self.up, beta))
     }
 
     /// The angle of the line down from the top (`−up`) on the branch nearest `near`, rad.
@@ -218,14 +225,7 @@ impl Lay {
             Top::Exit => self.place_at_exit(k + 1, k),
             Top::Moving => {
                 let p = self.at(k);
-                // The wire's new top at the wire's angle (as it leaves), the pipe's at the tower's.
-                let (theta, up) = if k + 1 < self.pipe_end {
-                    let near = self.store.u[3 * k + 5] + self.base.base[3 * k + 5];
-                    (self.line_angle(near), self.up)
-                } else {
-                    let beta = self.pitch_at(self.state.t);
-                    (self.theta - beta, turned(self.up, beta))
-                };
+                let (theta, up) = self.new_top(k + 1, k + 1);
                 let q = [p[0] - l * up[0], p[1] - l * up[1]];
                 self.place_on_line(k + 1, q, k, theta);
             }
