@@ -320,5 +320,50 @@ fn design_check(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, waves, friction, sections, design_check);
+/// A run's threads (`RunOptions::threads`, `catena run --threads`): storm 23 on the fatigue mesh
+/// (861 nodes, 400 wave components) for 30 s (600 steps, the ramp shortened to 10 s, its fatigue
+/// counted from 10 s), through `run::run` with its built-in outputs, on one thread (the fatigue
+/// counting on the stepping thread) and on two (the counting on a thread of its own). The phase
+/// the second thread takes is the counting; the stepping is one thread either way. The statics are
+/// solved once, outside the timing; the damage is the same to the bit (`tests/sea.rs`).
+fn threads(c: &mut Criterion) {
+    use catena::scene::riser::RiserScene;
+    use catena::scene::DirResolver;
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
+    let files = DirResolver::beside(&case);
+    let text = std::fs::read_to_string(&case)
+        .expect("case")
+        .replace("duration = 1800.0", "duration = 30.0")
+        .replace("envelope_start = 200.0", "envelope_start = 10.0")
+        .replace("start = 200.0", "start = 10.0")
+        .replace("ramp = 100.0", "ramp = 10.0");
+    let scene = RiserScene::parse("storm23", &text, &files).expect("scene");
+    let st = catena::run::statics::solve(scene).expect("statics");
+    let mut g = c.benchmark_group("threads");
+    g.sample_size(10);
+    for threads in [1, 2] {
+        g.bench_function(format!("storm23_30s_fatigue_{threads}_thread"), |b| {
+            b.iter(|| {
+                let opts = catena::run::RunOptions {
+                    threads: Some(threads),
+                    ..catena::run::RunOptions::default()
+                };
+                let r = catena::run::run(st.clone(), &mut [], opts).expect("run");
+                assert!(r.fatigue.is_some(), "counted");
+                r
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench,
+    waves,
+    friction,
+    sections,
+    design_check,
+    threads
+);
 criterion_main!(benches);

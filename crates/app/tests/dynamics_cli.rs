@@ -465,6 +465,7 @@ fn restart_from_checkpoint_is_bit_for_bit() {
             restart_file: "cut.json".into(),
             stop_after: None,
             start: None,
+            threads: None,
         },
     )
     .expect("runs");
@@ -496,6 +497,7 @@ fn restart_from_checkpoint_is_bit_for_bit() {
             restart_file: "cut.json".into(),
             stop_after: None,
             start: None,
+            threads: None,
         },
     )
     .expect_err("another scene");
@@ -599,6 +601,7 @@ fn malformed_checkpoints_are_refused_with_the_reason() {
                 restart_file: "bad.json".into(),
                 stop_after: None,
                 start: None,
+                threads: None,
             },
         )
         .expect_err(label)

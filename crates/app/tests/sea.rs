@@ -230,6 +230,37 @@ fn sampled_kinematics_are_the_exact_ones_within_1e_4() {
     assert!(rel(da, db) < 1e-3, "damage {da} vs {db}");
 }
 
+/// A run's threads (`RunOptions::threads`) say where the fatigue damage is counted, on the
+/// stepping thread (1) or on a thread of its own (2), and change nothing else: 30 s of storm 23
+/// run both ways, the damage and the counters' state the same to the bit. (A study at `--jobs`
+/// equal to the cores gives each storm one thread: `schedule::threads_per_run`.)
+#[test]
+fn fatigue_counts_the_same_on_one_thread_or_two() {
+    let on = |threads| {
+        let opts = RunOptions {
+            threads: Some(threads),
+            ..RunOptions::default()
+        };
+        run::run(short_storm(&[]), &mut [], opts).expect("runs")
+    };
+    let (one, two) = (on(1), on(2));
+    let (f1, f2) = (
+        one.fatigue.as_ref().expect("fatigue"),
+        two.fatigue.as_ref().expect("fatigue"),
+    );
+    assert!(!f1.threaded(), "one thread counts on the stepping thread");
+    assert!(f2.threaded(), "two threads count on a thread of their own");
+    let (c1, c2) = (
+        f1.counting().expect("counted"),
+        f2.counting().expect("counted"),
+    );
+    let bits = |d: &[f64]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert!(c1.damage.iter().any(|&d| d > 0.0), "damage counted");
+    assert_eq!(bits(&c1.damage), bits(&c2.damage), "damage");
+    assert_eq!(c1, c2, "counters");
+    assert_eq!(one.envelopes, two.envelopes, "envelopes");
+}
+
 /// With sampled kinematics, a run stopped at a checkpoint in the middle of a sampling interval
 /// (step 111, t = 5.55 s, between the samples at 5.445 s and 5.6925 s) and restarted is bit for bit
 /// the uninterrupted run: the samples are history in the State, and travel with the checkpoint.
@@ -276,6 +307,7 @@ fn restart_with_sampled_kinematics_is_bit_for_bit() {
             restart_file: "cut.json".into(),
             stop_after: None,
             start: None,
+            threads: None,
         },
     )
     .expect("runs");

@@ -77,6 +77,11 @@ enum Command {
         /// every step, compression would slow the run).
         #[arg(long, value_name = "WHEN", default_value = "auto", value_parser = ["auto", "yes", "no"])]
         compress: String,
+        /// The threads the run may keep busy: 1 counts the fatigue damage on the stepping thread,
+        /// 2 or more on a thread of its own (default: the machine's cores). The results are the
+        /// same whatever the number; the HDF5 writer and the plots have threads of their own.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
     },
     /// What accuracy costs in time: the scene re-run with its element lengths and its time step
     /// scaled (by default x2, x1, x1/2, x1/4 each). Reports the key outputs with their errors
@@ -304,6 +309,7 @@ fn dispatch(command: Command) -> Result<(), catena::AppError> {
             checkpoint_every,
             restart,
             compress,
+            threads,
         } => {
             let stop = Some(stop_on_signal());
             commands::run(
@@ -320,6 +326,7 @@ fn dispatch(command: Command) -> Result<(), catena::AppError> {
                         "no" => Some(false),
                         _ => None,
                     },
+                    threads: threads.and_then(|t| usize::try_from(t).ok()),
                 },
             )
             .map(|t| print!("{t}"))

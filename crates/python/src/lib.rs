@@ -418,6 +418,18 @@ fn on_threads<T: Send>(
     py.detach(|| pool.install(f)).map_err(err)
 }
 
+/// The threads each of `n` runs may keep busy when `jobs` run side by side (0: the machine's
+/// cores, as [`on_threads`]' pool): the cores shared between them
+/// ([`catena::studies::schedule::threads_per_run`]).
+fn per_run(jobs: usize, n: usize) -> usize {
+    let jobs = if jobs == 0 {
+        catena::run::default_threads()
+    } else {
+        jobs
+    };
+    catena::studies::schedule::threads_per_run(jobs.min(n))
+}
+
 /// A result or a carry as JSON text (exact: serde_json round-trips every f64).
 fn to_json<T: serde::Serialize>(v: &T) -> PyResult<String> {
     serde_json::to_string(v).map_err(err)
@@ -447,12 +459,14 @@ fn task(what: &str, k: usize, n: usize) -> PyResult<usize> {
 fn fatigue_study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<'py, PyDict>> {
     use rayon::prelude::*;
     let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
+    let threads = Some(per_run(jobs, study.storms.len()));
     let results = on_threads(py, jobs, || {
         study
             .storms
             .par_iter()
             .map(|(storm, scene)| {
-                catena::studies::fatigue_study::run_storm(storm, scene).map_err(|e| e.to_string())
+                catena::studies::fatigue_study::run_storm(storm, scene, threads)
+                    .map_err(|e| e.to_string())
             })
             .collect::<Result<Vec<_>, _>>()
     })?;
@@ -482,7 +496,7 @@ fn study_storm(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> 
     let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
     let r = py
-        .detach(|| catena::studies::fatigue_study::run_storm(storm, scene))
+        .detach(|| catena::studies::fatigue_study::run_storm(storm, scene, None))
         .map_err(err)?;
     to_json(&r)
 }
@@ -772,10 +786,11 @@ fn sweep(py: Python<'_>, path: PathBuf, jobs: usize) -> PyResult<String> {
     use rayon::prelude::*;
     let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
+    let threads = Some(per_run(jobs, runs.len()));
     let results = on_threads(py, jobs, || {
         Ok(runs
             .par_iter()
-            .map(|r| Some(catena::studies::sweep::run_one(r)))
+            .map(|r| Some(catena::studies::sweep::run_one(r, threads)))
             .collect::<Vec<_>>())
     })?;
     sweep_table(&plan, &runs, &results)
@@ -804,7 +819,7 @@ fn sweep_run(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
     let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let spec = &runs[task("run", index, runs.len())?];
-    to_json(&py.detach(|| catena::studies::sweep::run_one(spec)))
+    to_json(&py.detach(|| catena::studies::sweep::run_one(spec, None)))
 }
 
 /// A sweep's table from its runs' results (JSON texts, or `None` for a run without one, which

@@ -141,6 +141,20 @@ pub struct RunOptions {
     /// histories, friction anchors) instead of the statics' state: a storm sequence's next storm.
     /// The carry must be of this scene's Model (the same line, mesh and seabed law).
     pub start: Option<dynamics::Carry>,
+    /// The threads this run may keep busy: 1 counts the fatigue damage on the stepping thread, 2
+    /// or more on a thread of its own ([`crate::run::observers::fatigue`]); `None` takes
+    /// [`default_threads`]. A study running `jobs` runs side by side gives each
+    /// [`crate::studies::schedule::threads_per_run`], so that its runs do not oversubscribe the
+    /// cores. The results are the same to the bit whatever the number (only where the work is
+    /// done changes). The HDF5 writer and the plots of `catena run`, which wait on the disk, have
+    /// threads of their own whatever this says.
+    pub threads: Option<usize>,
+}
+
+/// The threads a run takes when its options do not say: the machine's cores (1 when they cannot
+/// be read).
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
 }
 
 /// Places the gauges defined by a touchdown rule: midway (in arc length) between the static
@@ -226,6 +240,7 @@ pub fn run(
     let mut outputs = Outputs::build(&Setup {
         spec: &spec,
         model: &dm,
+        threads: opts.threads.unwrap_or_else(default_threads).max(1),
     });
     let mut res = LineResults::new(n);
     let mut first_step = 1;

@@ -44,6 +44,8 @@ pub struct Setup<'a> {
     pub spec: &'a DynamicSpec,
     /// The dynamic Model.
     pub model: &'a DynamicModel,
+    /// The threads the run may keep busy (at least 1: [`crate::run::RunOptions::threads`]).
+    pub threads: usize,
 }
 
 /// One built-in output: its name (the key of its state in checkpoints) and how it is built for a
@@ -81,7 +83,7 @@ pub const BUILTINS: &[Registration] = &[
         build: |s| {
             let n = s.model.line.nodes();
             let f = s.spec.fatigue.clone()?;
-            Some(Box::new(Fatigue::new(f, n)))
+            Some(Box::new(Fatigue::with_thread(f, n, s.threads > 1)))
         },
     },
     Registration {

@@ -320,11 +320,20 @@ pub(crate) fn check_sea(sfile: &str, i: usize, hs: f64, tp: f64) -> Result<(), A
     Ok(())
 }
 
-/// Runs one storm.
-pub fn run_storm(storm: &Storm, scene: &RiserScene) -> Result<StormResult, AppError> {
+/// Runs one storm, keeping `threads` threads busy (`None`: the machine's cores; a study running
+/// storms side by side passes [`crate::studies::schedule::threads_per_run`]).
+pub fn run_storm(
+    storm: &Storm,
+    scene: &RiserScene,
+    threads: Option<usize>,
+) -> Result<StormResult, AppError> {
     let t0 = std::time::Instant::now();
     let hash = crate::scene::text_hash(&scene.text);
-    let r = run::simulate(scene.clone(), &mut [], RunOptions::default())?;
+    let opts = RunOptions {
+        threads,
+        ..RunOptions::default()
+    };
+    let r = run::simulate(scene.clone(), &mut [], opts)?;
     let damage = damage_of(&r, scene)?;
     Ok(StormResult {
         storm: storm.clone(),

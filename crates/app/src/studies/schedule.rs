@@ -11,6 +11,11 @@
 //! **Expected cost** ([`run_cost`]): time steps × nodes × the seabed law's relative cost × the
 //! sea's factor `1 + Hs/H_ITER` ([`H_ITER`]: measured on the scaling study, the Newton iterations a
 //! step grow with the waves' height). Only the order matters, so the model need only rank runs.
+//!
+//! **Threads per run** ([`threads_per_run`]): the cores shared between the `jobs` runs side by
+//! side, at least one each. At `--jobs` equal to the cores every run keeps one thread busy (its
+//! fatigue counting on its stepping thread, [`crate::run::RunOptions::threads`]), so the study
+//! does not run more busy threads than there are cores.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -44,6 +49,18 @@ pub fn run_cost(scene: &RiserScene) -> f64 {
             4.0 * m0.sqrt()
         });
     steps * nodes * law * (1.0 + hs / H_ITER)
+}
+
+/// The threads each of `jobs` runs side by side may keep busy on this machine
+/// ([`threads_per_run_on`] its cores).
+pub fn threads_per_run(jobs: usize) -> usize {
+    threads_per_run_on(jobs, crate::run::default_threads())
+}
+
+/// The threads each of `jobs` runs side by side may keep busy on `cores` cores: an equal share,
+/// at least one.
+pub fn threads_per_run_on(jobs: usize, cores: usize) -> usize {
+    (cores / jobs.max(1)).max(1)
 }
 
 /// The indices of `costs` by decreasing cost (ties: in their order; a cost that is not a number
@@ -99,6 +116,18 @@ pub fn by_cost<I: Sync, R: Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Runs side by side share the cores: one thread each once the jobs reach the cores.
+    #[test]
+    fn runs_side_by_side_share_the_cores() {
+        assert_eq!(threads_per_run_on(1, 2), 2);
+        assert_eq!(threads_per_run_on(2, 2), 1);
+        assert_eq!(threads_per_run_on(3, 2), 1);
+        assert_eq!(threads_per_run_on(0, 2), 2);
+        assert_eq!(threads_per_run_on(8, 16), 2);
+        assert_eq!(threads_per_run_on(16, 16), 1);
+        assert_eq!(threads_per_run_on(4, 1), 1);
+    }
 
     #[test]
     fn the_order_is_by_decreasing_cost_ties_in_order() {

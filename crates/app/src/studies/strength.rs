@@ -228,11 +228,15 @@ impl StrengthStudy {
     }
 }
 
-/// Runs one storm and seed.
-pub fn run_one(run: &StrengthRun) -> Result<RunResult, AppError> {
+/// Runs one storm and seed, keeping `threads` threads busy (`None`: the machine's cores).
+pub fn run_one(run: &StrengthRun, threads: Option<usize>) -> Result<RunResult, AppError> {
     let t0 = std::time::Instant::now();
     let hash = crate::scene::text_hash(&run.scene.text);
-    let r = run::simulate(run.scene.clone(), &mut [], RunOptions::default())?;
+    let opts = RunOptions {
+        threads,
+        ..RunOptions::default()
+    };
+    let r = run::simulate(run.scene.clone(), &mut [], opts)?;
     let d = r.output::<DesignCheck>().ok_or_else(|| AppError::Run {
         file: run.scene.file.clone(),
         message: "the run's scene has no [design_check] table".into(),

@@ -296,8 +296,9 @@ pub fn run_hash(spec: &RunSpec) -> String {
     }
 }
 
-/// Runs one run. Never fails: an error is recorded in the result.
-pub fn run_one(spec: &RunSpec) -> RunResult {
+/// Runs one run, keeping `threads` threads busy (`None`: the machine's cores). Never fails: an
+/// error is recorded in the result.
+pub fn run_one(spec: &RunSpec, threads: Option<usize>) -> RunResult {
     let t0 = std::time::Instant::now();
     let mut res = RunResult {
         id: spec.id.clone(),
@@ -319,7 +320,11 @@ pub fn run_one(spec: &RunSpec) -> RunResult {
             return res;
         }
     };
-    match run::simulate(scene, &mut [], RunOptions::default()) {
+    let opts = RunOptions {
+        threads,
+        ..RunOptions::default()
+    };
+    match run::simulate(scene, &mut [], opts) {
         Ok(r) => {
             res.arc = r.model.line.arc.clone();
             let finite = |x: f64| x.is_finite().then_some(x);

@@ -25,6 +25,8 @@ pub fn fatigue(
     let dir = out.join("storms");
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
     let n = study.storms.len();
+    // The cores shared between the storms side by side ([`catena::studies::schedule`]).
+    let threads = Some(catena::studies::schedule::threads_per_run(jobs.min(n)));
     let (rs, reused) = resumable(
         &study.storms,
         (
@@ -39,7 +41,7 @@ pub fn fatigue(
                 && r.error.is_none()
                 && r.storm == *storm
         },
-        |(storm, scene)| run_storm(storm, scene),
+        |(storm, scene)| run_storm(storm, scene, threads),
         |(storm, _), r, k| {
             if progress {
                 eprintln!(

@@ -35,6 +35,9 @@ pub struct RunCommandOptions {
     /// Compress the recorded float fields (`None`: when the records are decimated, see
     /// [`compress_by_default`]).
     pub compress: Option<bool>,
+    /// The threads the run may keep busy (`None`: the machine's cores;
+    /// [`catena::run::RunOptions::threads`]).
+    pub threads: Option<usize>,
 }
 
 /// Whether `results.h5`'s float fields are compressed when the user did not say: when the records
@@ -127,6 +130,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
             restart,
             stop_after: opts.stop_after,
             start: None,
+            threads: opts.threads,
         },
     )?;
     drop(extra);

@@ -27,6 +27,8 @@ pub fn strength(
     let dir = out.join("runs");
     std::fs::create_dir_all(&dir).map_err(|e| AppError::io(&dir, e))?;
     let n = study.runs.len();
+    // The cores shared between the runs side by side ([`catena::studies::schedule`]).
+    let threads = Some(catena::studies::schedule::threads_per_run(jobs.min(n)));
     let (rs, reused) = resumable(
         &study.runs,
         (jobs, |run: &catena::studies::strength::StrengthRun| {
@@ -38,7 +40,7 @@ pub fn strength(
                 && r.error.is_none()
                 && r.storm == run.storm
         },
-        run_one,
+        |run| run_one(run, threads),
         |run, r, k| {
             if progress {
                 eprintln!(

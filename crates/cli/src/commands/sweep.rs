@@ -92,6 +92,8 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
         let mine: Vec<&sweep::RunSpec> =
             runs.iter().filter(|r| r.index % shards == shard).collect();
         let n = mine.len();
+        // The cores shared between the runs side by side ([`catena::studies::schedule`]).
+        let threads = catena::studies::schedule::threads_per_run(o.jobs.min(n));
         let done = std::sync::atomic::AtomicUsize::new(0);
         // The most expensive runs first (`catena::studies::schedule`); a run whose scene failed
         // to build costs nothing (it fails at once).
@@ -107,7 +109,7 @@ pub fn sweep(plan_path: &Path, o: &SweepOptions) -> Result<String, AppError> {
                     done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
                     return Ok(false);
                 }
-                let r = run_and_keep(&dir, &hash, spec)?;
+                let r = run_and_keep(&dir, &hash, spec, threads)?;
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
                 if o.progress {
                     let el = t0.elapsed().as_secs_f64();
@@ -211,8 +213,9 @@ fn run_and_keep(
     dir: &Path,
     hash: &str,
     spec: &catena::studies::sweep::RunSpec,
+    threads: usize,
 ) -> Result<catena::studies::sweep::RunResult, AppError> {
-    let r = catena::studies::sweep::run_one(spec);
+    let r = catena::studies::sweep::run_one(spec, Some(threads));
     let path = dir.join(format!("{hash}.json"));
     let tmp = dir.join(format!("{hash}.{}.tmp", spec.id));
     let body = serde_json::to_string(&r).map_err(|e| AppError::Output {

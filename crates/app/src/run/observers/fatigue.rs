@@ -3,8 +3,9 @@
 //! Miner damage is added at once (`n/N(SCF·t_corr·Δσ)`); at the end the residue counts as half
 //! cycles. No second pass over the output, and nothing of the history is kept.
 //!
-//! **Off the stepping thread.** On a machine with more than one core the counting runs on a thread
-//! of its own: the observer copies each counted step's effective tension, moment and height at every
+//! **Off the stepping thread.** When the run may keep two threads busy
+//! ([`crate::run::RunOptions::threads`]: the machine's cores by default, one in a study that
+//! already runs a storm on every core) the counting runs on a thread of its own: the observer copies each counted step's effective tension, moment and height at every
 //! node (`3·n` numbers) into a batch, and hands the thread a batch every [`BATCH_STEPS`] steps
 //! (fewer on a line so long that a batch would pass [`BATCH_VALUES`] numbers), at most
 //! [`BATCHES_IN_FLIGHT`] of them waiting: a run never gets ahead of its counting by more. The
@@ -189,6 +190,11 @@ impl Fatigue {
     pub fn new(spec: FatigueSpec, n: usize) -> Self {
         let threaded = std::thread::available_parallelism().is_ok_and(|c| c.get() > 1);
         Self::with_thread(spec, n, threaded)
+    }
+
+    /// Whether the counting runs on a thread of its own.
+    pub fn threaded(&self) -> bool {
+        self.threaded
     }
 
     /// The observer for `n` nodes, counting on a thread of its own (`threaded`) or on the stepping
