@@ -598,6 +598,8 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
     use rayon::prelude::*;
     let seq = Sequence::read(&path).map_err(err)?;
     let n = seq.visits.len();
+    // The chain and the as-laid visits side by side share the cores.
+    let threads = Some(per_run(jobs.max(2), usize::MAX));
     let (memory, laid) = on_threads(py, jobs.max(2), || {
         let ks: Vec<usize> = (0..n).collect();
         let (memory, laid) = rayon::join(
@@ -605,7 +607,8 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
                 let mut out = Vec::new();
                 let mut carry = None;
                 for k in 0..n {
-                    let (r, next) = run_visit(&seq, k, carry.take()).map_err(|e| e.to_string())?;
+                    let (r, next) =
+                        run_visit(&seq, k, carry.take(), threads).map_err(|e| e.to_string())?;
                     let stop = next.is_none();
                     out.push(r);
                     if stop {
@@ -620,7 +623,7 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
                     return Ok(Vec::new());
                 }
                 ks.par_iter()
-                    .map(|&k| run_as_laid(&seq, k).map_err(|e| e.to_string()))
+                    .map(|&k| run_as_laid(&seq, k, threads).map_err(|e| e.to_string()))
                     .collect()
             },
         );
@@ -674,7 +677,7 @@ fn sequence_visit(
         )));
     }
     let (r, next) = py
-        .detach(|| catena::studies::sequence::run_visit(&seq, k, start))
+        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, None))
         .map_err(err)?;
     Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
 }
@@ -685,7 +688,7 @@ fn sequence_as_laid(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<Str
     let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
     let r = py
-        .detach(|| catena::studies::sequence::run_as_laid(&seq, k))
+        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, None))
         .map_err(err)?;
     to_json(&r)
 }

@@ -391,12 +391,14 @@ impl Sequence {
 }
 
 /// Runs visit `k` from `start` (the as-laid statics when `None`): the storm, then the calm (the
-/// line brought to rest, each node's history rested for `calm` seconds). Returns the result and
-/// what it leaves for the next visit (`None` if the storm stopped early).
+/// line brought to rest, each node's history rested for `calm` seconds), keeping `threads`
+/// threads busy (`None`: the machine's cores; [`crate::run::RunOptions::threads`]). Returns the
+/// result and what it leaves for the next visit (`None` if the storm stopped early).
 pub fn run_visit(
     seq: &Sequence,
     k: usize,
     start: Option<Carry>,
+    threads: Option<usize>,
 ) -> Result<(VisitResult, Option<Carry>), AppError> {
     let t0 = std::time::Instant::now();
     let (visit, scene) = &seq.visits[k];
@@ -405,6 +407,7 @@ pub fn run_visit(
         &mut [],
         RunOptions {
             start,
+            threads,
             ..RunOptions::default()
         },
     )?;
@@ -440,6 +443,7 @@ pub fn run_visit(
             &mut [],
             RunOptions {
                 start: Some(storm.carry.clone()),
+                threads,
                 ..RunOptions::default()
             },
         )?;
@@ -497,11 +501,20 @@ pub fn run_visit(
     Ok((result, Some(carry)))
 }
 
-/// Visit `k` from the as-laid statics, without the calm (the study as today).
-pub fn run_as_laid(seq: &Sequence, k: usize) -> Result<VisitResult, AppError> {
+/// Visit `k` from the as-laid statics, without the calm (the study as today), keeping `threads`
+/// threads busy (`None`: the machine's cores).
+pub fn run_as_laid(
+    seq: &Sequence,
+    k: usize,
+    threads: Option<usize>,
+) -> Result<VisitResult, AppError> {
     let t0 = std::time::Instant::now();
     let (visit, scene) = &seq.visits[k];
-    let r = run::simulate(scene.clone(), &mut [], RunOptions::default())?;
+    let opts = RunOptions {
+        threads,
+        ..RunOptions::default()
+    };
+    let r = run::simulate(scene.clone(), &mut [], opts)?;
     Ok(VisitResult {
         visit: visit.clone(),
         scene_hash: seq.hash_of(k),

@@ -13,6 +13,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use catena::run::statics;
+use catena::studies::schedule::threads_per_run;
 use catena::studies::sequence::{annual_damage, run_as_laid, run_visit, Sequence, VisitResult};
 use catena::AppError;
 use catena_fe::dynamics::Carry;
@@ -38,7 +39,7 @@ fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Option<T> {
 fn chain(
     seq: &Sequence,
     dir: &Path,
-    progress: bool,
+    (threads, progress): (usize, bool),
     t0: Instant,
 ) -> Result<(Vec<VisitResult>, usize), AppError> {
     let n = seq.visits.len();
@@ -68,7 +69,7 @@ fn chain(
     let resumed = results.len();
     for k in resumed..n {
         let (vp, cp) = paths(k);
-        let (r, next) = run_visit(seq, k, carry.take())?;
+        let (r, next) = run_visit(seq, k, carry.take(), Some(threads))?;
         if let Some(c) = &next {
             write_atomic(&cp, c)?;
         }
@@ -108,7 +109,7 @@ fn chain(
 fn as_laid(
     seq: &Sequence,
     dir: &Path,
-    threads: usize,
+    (threads, per_run): (usize, usize),
     progress: bool,
 ) -> Result<Vec<VisitResult>, AppError> {
     let ks: Vec<usize> = (0..seq.visits.len()).collect();
@@ -121,7 +122,7 @@ fn as_laid(
         |&k, r: &VisitResult| {
             r.scene_hash == seq.hash_of(k) && r.error.is_none() && r.visit == seq.visits[k].0
         },
-        |&k| run_as_laid(seq, k),
+        |&k| run_as_laid(seq, k, Some(per_run)),
         |_, r, done| {
             if progress {
                 eprintln!(
@@ -382,9 +383,12 @@ fn both_chains(
     t0: Instant,
 ) -> Result<(Vec<VisitResult>, usize, Vec<VisitResult>), AppError> {
     let alongside = seq.as_laid && jobs >= 2;
+    // Alongside, the chain and the as-laid runs share the cores ([`catena::studies::schedule`]).
+    let per_run = threads_per_run(if alongside { jobs } else { 1 });
     let (memory, laid) = std::thread::scope(|sc| {
-        let laid = alongside.then(|| sc.spawn(|| as_laid(seq, ldir, jobs - 1, progress)));
-        let memory = chain(seq, vdir, progress, t0);
+        let laid =
+            alongside.then(|| sc.spawn(|| as_laid(seq, ldir, (jobs - 1, per_run), progress)));
+        let memory = chain(seq, vdir, (per_run, progress), t0);
         let laid = laid.map(|h| {
             h.join().unwrap_or_else(|_| {
                 Err(AppError::Run {
@@ -398,7 +402,7 @@ fn both_chains(
     let (memory, resumed) = memory?;
     let laid = match laid {
         Some(r) => r?,
-        None if seq.as_laid => as_laid(seq, ldir, 1, progress)?,
+        None if seq.as_laid => as_laid(seq, ldir, (1, threads_per_run(1)), progress)?,
         None => Vec::new(),
     };
     Ok((memory, resumed, laid))
