@@ -375,9 +375,9 @@ pub fn variant(
 
 fn run_variant(
     scene: &RiserScene,
-    mesh_factor: f64,
-    dt_factor: f64,
+    (mesh_factor, dt_factor): (f64, f64),
     files: &dyn Resolver,
+    threads: usize,
 ) -> Result<VariantRun, AppError> {
     let vscene = variant(scene, mesh_factor, dt_factor, files)?;
     let scene_text = vscene.text.clone();
@@ -392,7 +392,12 @@ fn run_variant(
         return lay_variant(vscene, (mesh_factor, dt_factor), (elements, min_el));
     }
     let t0 = Instant::now();
-    let r = run::simulate(vscene, &mut [], RunOptions::default())?;
+    // The runs side by side share the cores (`schedule::threads_per_run`).
+    let opts = RunOptions {
+        threads: Some(threads),
+        ..RunOptions::default()
+    };
+    let r = run::simulate(vscene, &mut [], opts)?;
     let wall = t0.elapsed().as_secs_f64();
     let values = if r.completed() {
         key_outputs(&r)
@@ -530,8 +535,9 @@ pub fn study(case: &Path, opts: &ConvergenceOptions) -> Result<Study, AppError> 
     let mut pairs: Vec<(f64, f64)> = vec![(1.0, 1.0)];
     pairs.extend(mesh.iter().filter(|f| **f != 1.0).map(|f| (*f, 1.0)));
     pairs.extend(dts.iter().filter(|f| **f != 1.0).map(|f| (1.0, *f)));
+    let threads = crate::studies::schedule::threads_per_run(opts.jobs.min(pairs.len()));
     let one = |&(mf, df): &(f64, f64)| {
-        let r = run_variant(&scene, mf, df, &files);
+        let r = run_variant(&scene, (mf, df), &files, threads);
         if opts.progress {
             match &r {
                 Ok(v) => eprintln!(
