@@ -284,21 +284,28 @@ fn sections(c: &mut Criterion) {
     g.finish();
 }
 
-/// What the strength check costs a storm run: storm 23 on the fatigue mesh (861 nodes, 400 wave
-/// components, its fatigue counting on) for 30 s (600 steps, the 10 s ramp shortened to fit), run
-/// through `run::run` with its built-in outputs, without and with a DNV `[design_check]` from t = 0
-/// (every node, every step). The statics are solved once, outside the timing.
-fn design_check(c: &mut Criterion) {
-    use catena::scene::riser::RiserScene;
-    use catena::scene::DirResolver;
+/// Storm 23 (`cases/scr1000/storm23.toml`: the fatigue mesh, 400 wave components) cut to 30 s,
+/// its ramp to 10 s and its envelopes and fatigue counted from 10 s; its case text and where its
+/// files are read from.
+fn storm23_30s() -> (String, catena::scene::DirResolver) {
     let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
-    let files = DirResolver::beside(&case);
+    let files = catena::scene::DirResolver::beside(&case);
     let text = std::fs::read_to_string(&case)
         .expect("case")
         .replace("duration = 1800.0", "duration = 30.0")
         .replace("envelope_start = 200.0", "envelope_start = 10.0")
         .replace("start = 200.0", "start = 10.0")
         .replace("ramp = 100.0", "ramp = 10.0");
+    (text, files)
+}
+
+/// What the strength check costs a storm run: storm 23 on the fatigue mesh (861 nodes, 400 wave
+/// components, its fatigue counting on) for 30 s (600 steps, the 10 s ramp shortened to fit), run
+/// through `run::run` with its built-in outputs, without and with a DNV `[design_check]` from t = 0
+/// (every node, every step). The statics are solved once, outside the timing.
+fn design_check(c: &mut Criterion) {
+    use catena::scene::riser::RiserScene;
+    let (text, files) = storm23_30s();
     let with_check = format!(
         "{text}\n[design_check]\ncode = \"dnv-st-f201\"\nsmys = 448e6\nsmts = 531e6\ninternal_pressure = 15e6\nstart = 0.0\n"
     );
@@ -328,15 +335,7 @@ fn design_check(c: &mut Criterion) {
 /// solved once, outside the timing; the damage is the same to the bit (`tests/sea.rs`).
 fn threads(c: &mut Criterion) {
     use catena::scene::riser::RiserScene;
-    use catena::scene::DirResolver;
-    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
-    let files = DirResolver::beside(&case);
-    let text = std::fs::read_to_string(&case)
-        .expect("case")
-        .replace("duration = 1800.0", "duration = 30.0")
-        .replace("envelope_start = 200.0", "envelope_start = 10.0")
-        .replace("start = 200.0", "start = 10.0")
-        .replace("ramp = 100.0", "ramp = 10.0");
+    let (text, files) = storm23_30s();
     let scene = RiserScene::parse("storm23", &text, &files).expect("scene");
     let st = catena::run::statics::solve(scene).expect("statics");
     let mut g = c.benchmark_group("threads");

@@ -184,21 +184,14 @@ impl CountingThread {
 }
 
 impl Fatigue {
-    /// The observer for `n` nodes (each with the specification's section and curve, or, for a line
-    /// of sections, its own: [`FatigueSpec::nodes`]). It counts on a thread of its own when the
-    /// machine has more than one core.
-    pub fn new(spec: FatigueSpec, n: usize) -> Self {
-        let threaded = std::thread::available_parallelism().is_ok_and(|c| c.get() > 1);
-        Self::with_thread(spec, n, threaded)
-    }
-
     /// Whether the counting runs on a thread of its own.
     pub fn threaded(&self) -> bool {
         self.threaded
     }
 
-    /// The observer for `n` nodes, counting on a thread of its own (`threaded`) or on the stepping
-    /// thread.
+    /// The observer for `n` nodes (each with the specification's section and curve, or, for a line
+    /// of sections, its own: [`FatigueSpec::nodes`]), counting on a thread of its own (`threaded`:
+    /// the run's [`crate::run::RunOptions::threads`] above one) or on the stepping thread.
     pub fn with_thread(spec: FatigueSpec, n: usize, threaded: bool) -> Self {
         let factor = range_factor(&spec);
         let m = n * spec.fibres.len() * 2;
