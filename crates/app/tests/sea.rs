@@ -237,10 +237,7 @@ fn sampled_kinematics_are_the_exact_ones_within_1e_4() {
 #[test]
 fn fatigue_counts_the_same_on_one_thread_or_two() {
     let on = |threads| {
-        let opts = RunOptions {
-            threads: Some(threads),
-            ..RunOptions::default()
-        };
+        let opts = RunOptions::with_threads(Some(threads));
         run::run(short_storm(&[]), &mut [], opts).expect("runs")
     };
     let (one, two) = (on(1), on(2));

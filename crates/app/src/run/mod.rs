@@ -151,6 +151,17 @@ pub struct RunOptions {
     pub threads: Option<usize>,
 }
 
+impl RunOptions {
+    /// The default options but for the threads the run may keep busy (`None`: the machine's
+    /// cores): what each run of a study gets.
+    pub fn with_threads(threads: Option<usize>) -> Self {
+        Self {
+            threads,
+            ..Self::default()
+        }
+    }
+}
+
 /// The threads a run takes when its options do not say: the machine's cores (1 when they cannot
 /// be read).
 pub fn default_threads() -> usize {

@@ -393,10 +393,7 @@ fn run_variant(
     }
     let t0 = Instant::now();
     // The runs side by side share the cores (`schedule::threads_per_run`).
-    let opts = RunOptions {
-        threads: Some(threads),
-        ..RunOptions::default()
-    };
+    let opts = RunOptions::with_threads(Some(threads));
     let r = run::simulate(vscene, &mut [], opts)?;
     let wall = t0.elapsed().as_secs_f64();
     let values = if r.completed() {

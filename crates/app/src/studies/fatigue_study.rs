@@ -329,10 +329,7 @@ pub fn run_storm(
 ) -> Result<StormResult, AppError> {
     let t0 = std::time::Instant::now();
     let hash = crate::scene::text_hash(&scene.text);
-    let opts = RunOptions {
-        threads,
-        ..RunOptions::default()
-    };
+    let opts = RunOptions::with_threads(threads);
     let r = run::simulate(scene.clone(), &mut [], opts)?;
     let damage = damage_of(&r, scene)?;
     Ok(StormResult {

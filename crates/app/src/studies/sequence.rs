@@ -510,10 +510,7 @@ pub fn run_as_laid(
 ) -> Result<VisitResult, AppError> {
     let t0 = std::time::Instant::now();
     let (visit, scene) = &seq.visits[k];
-    let opts = RunOptions {
-        threads,
-        ..RunOptions::default()
-    };
+    let opts = RunOptions::with_threads(threads);
     let r = run::simulate(scene.clone(), &mut [], opts)?;
     Ok(VisitResult {
         visit: visit.clone(),

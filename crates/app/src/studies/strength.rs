@@ -232,10 +232,7 @@ impl StrengthStudy {
 pub fn run_one(run: &StrengthRun, threads: Option<usize>) -> Result<RunResult, AppError> {
     let t0 = std::time::Instant::now();
     let hash = crate::scene::text_hash(&run.scene.text);
-    let opts = RunOptions {
-        threads,
-        ..RunOptions::default()
-    };
+    let opts = RunOptions::with_threads(threads);
     let r = run::simulate(run.scene.clone(), &mut [], opts)?;
     let d = r.output::<DesignCheck>().ok_or_else(|| AppError::Run {
         file: run.scene.file.clone(),

@@ -320,10 +320,7 @@ pub fn run_one(spec: &RunSpec, threads: Option<usize>) -> RunResult {
             return res;
         }
     };
-    let opts = RunOptions {
-        threads,
-        ..RunOptions::default()
-    };
+    let opts = RunOptions::with_threads(threads);
     match run::simulate(scene, &mut [], opts) {
         Ok(r) => {
             res.arc = r.model.line.arc.clone();
