@@ -598,8 +598,10 @@ fn sequence<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Bound<
     use rayon::prelude::*;
     let seq = Sequence::read(&path).map_err(err)?;
     let n = seq.visits.len();
-    // The chain and the as-laid visits side by side share the cores.
-    let threads = Some(per_run(jobs.max(2), usize::MAX));
+    // The chain and the as-laid visits side by side share the cores; a chain alone has them all
+    // (as `catena sequence`).
+    let side_by_side = if seq.as_laid { jobs.max(2) } else { 1 };
+    let threads = Some(per_run(side_by_side, usize::MAX));
     let (memory, laid) = on_threads(py, jobs.max(2), || {
         let ks: Vec<usize> = (0..n).collect();
         let (memory, laid) = rayon::join(
