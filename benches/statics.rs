@@ -5,6 +5,8 @@
 //!   factorisation, Newton);
 //! - `scr1000_assemble`: one assembly of residual and tangent;
 //! - `scr1000_factor_solve`: one numeric LDLᵀ factorisation and solve;
+//! - `scr1000_factor_{1,2}t`, `scr1000_solve_{1,2}t`: the factorisation and the solve apart, on one
+//!   thread and on two ([`catena_fe::assembly::Assembler::use_partner`]);
 //! - `scr1000_symbolic`: building the workspace (pattern and symbolic factorisation, once per run).
 //!
 //! Run: `cargo bench -p catena-benches --bench statics`.
@@ -49,6 +51,22 @@ fn bench(c: &mut Criterion) {
             ws.asm.solve_tangent(&mut rhs);
         })
     });
+    // The same factorisation and solve apart, on one thread and on two (the bottom end on a
+    // partner thread: the same values to the bit).
+    for threads in [1, 2] {
+        if threads == 2 {
+            assert!(ws.asm.use_partner().expect("thread"), "a twisted band");
+        }
+        c.bench_function(&format!("scr1000_factor_{threads}t"), |b| {
+            b.iter(|| ws.asm.factor_tangent().expect("factor"))
+        });
+        c.bench_function(&format!("scr1000_solve_{threads}t"), |b| {
+            b.iter(|| {
+                rhs.copy_from_slice(&b0);
+                ws.asm.solve_tangent(&mut rhs);
+            })
+        });
+    }
     c.bench_function("scr1000_symbolic", |b| {
         b.iter(|| StaticWorkspace::new(&model).expect("ws"))
     });

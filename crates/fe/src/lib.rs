@@ -16,6 +16,7 @@
 //! - [`statics`]: the static Newton solve from a catenary seed;
 //! - [`integrator`]: the HHT-α/Newmark coefficients, predictors, relations and residual;
 //! - [`boundary`]: the prescribed dofs of the dynamics and what prescribes them;
+//! - [`partner`]: the partner thread that gives one run its second processor;
 //! - [`newton`]: Newton's bookkeeping for a time step (lazy tangent, reuse, backtracking, tests);
 //! - [`dynamics`]: the time stepping (Newton in each step, step cutting) on a
 //!   [`dynamics::DynamicModel`];
@@ -36,6 +37,7 @@ pub mod loads;
 pub mod model;
 pub mod motion;
 pub mod newton;
+pub mod partner;
 pub mod sectioned;
 pub mod sparse;
 pub mod statics;

@@ -190,6 +190,16 @@ impl LinearSolver {
         }
     }
 
+    /// Factorises and solves on two threads from now on where the band allows it
+    /// ([`BandLdlt::use_partner`]; faer's solver stays on one): the same values to the bit.
+    /// Returns whether it does.
+    pub fn use_partner(&mut self) -> std::io::Result<bool> {
+        match self {
+            Self::Band(b) => b.use_partner(),
+            Self::Sparse(_) => Ok(false),
+        }
+    }
+
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         match self {
@@ -235,6 +245,9 @@ pub struct BandLdlt {
     /// The twisted factorisation's middle block `m..m+5`, densely: `L_ca` at `[5a + c]` (`a < c`),
     /// `D_c` at `[6c]`.
     middle: Box<[f64; 25]>,
+    /// The thread that factorises and solves the bottom end, when the band uses one
+    /// ([`BandLdlt::use_partner`], [`split`]).
+    partner: split::Slot,
 }
 
 /// The fewest equations of a line's band factorised from both ends ([`factor_twisted5`]).
@@ -287,11 +300,15 @@ impl BandLdlt {
             twist,
             above,
             middle: Box::new([0.0; 25]),
+            partner: split::Slot::default(),
         }
     }
 
     /// The numeric factorisation of `a` (the pattern given to [`BandLdlt::new`]).
     pub fn factor(&mut self, a: &SparseSym) -> Result<(), SolveError> {
+        if let (Some(m), true) = (self.twist, self.has_partner()) {
+            return self.factor_split(a, m);
+        }
         for &h in &self.holes {
             self.band[h] = 0.0;
         }
@@ -327,6 +344,7 @@ impl BandLdlt {
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&self, x: &mut [f64]) {
         match self.twist {
+            Some(m) if self.has_partner() => self.solve_split(m, x),
             Some(m) => solve_twisted_dispatch(&self.first, &self.band, m, &self.middle, x),
             None => solve_dispatch(self.w, &self.first, &self.band, x),
         }
@@ -561,9 +579,7 @@ fn factor_twisted5(
     let p = m + W;
     // The first five columns and the last five rows by the general loops.
     factor_columns_dyn(first, W, band, 0..W)?;
-    for i in (n - W..n).rev() {
-        bottom_row(first, band, i, i + 1, true)?;
-    }
+    factor_bottom_tail(first, band)?;
     let (mut j, mut i) = (W, n - W - 1);
     while j < m && i >= p {
         top_column5(first, band, j)?;
@@ -579,6 +595,55 @@ fn factor_twisted5(
         bottom_row5(first, band, i)?;
         i -= 1;
     }
+    factor_middle5(first, band, m, middle)
+}
+
+/// The top end of [`factor_twisted5`] alone: the columns `0..m`, top-down (the partner of a split
+/// factorisation does the bottom end at the same time, [`factor_bottom5`]). They read and write
+/// the band's columns `0..m` only.
+#[inline(always)]
+fn factor_top5(first: &[usize], band: &mut [f64], m: usize) -> Result<(), SolveError> {
+    factor_columns_dyn(first, 5, band, 0..5)?;
+    for j in 5..m {
+        top_column5(first, band, j)?;
+    }
+    Ok(())
+}
+
+/// The bottom end of [`factor_twisted5`] alone: the rows `n−1` down to `m+5`. They read and write
+/// the band's columns `m+5..n` only.
+#[inline(always)]
+fn factor_bottom5(first: &[usize], band: &mut [f64], m: usize) -> Result<(), SolveError> {
+    factor_bottom_tail(first, band)?;
+    for i in (m + 5..first.len() - 5).rev() {
+        bottom_row5(first, band, i)?;
+    }
+    Ok(())
+}
+
+/// The last five rows of the bottom end, by the general loops.
+#[inline(always)]
+fn factor_bottom_tail(first: &[usize], band: &mut [f64]) -> Result<(), SolveError> {
+    let n = first.len();
+    for i in (n - 5..n).rev() {
+        bottom_row(first, band, i, i + 1, true)?;
+    }
+    Ok(())
+}
+
+/// The middle five of [`factor_twisted5`] once both ends are factorised: their couplings with
+/// either end and the dense LDLᵀ of their Schur complement. They read the band's columns
+/// `first[m]..m+10` and write columns `m..m+10`.
+#[inline(always)]
+fn factor_middle5(
+    first: &[usize],
+    band: &mut [f64],
+    m: usize,
+    middle: &mut [f64; 25],
+) -> Result<(), SolveError> {
+    const W: usize = 5;
+    let n = first.len();
+    let p = m + W;
     // The middle's couplings with either end, t = L·D in place of A: top rows q < m of
     // columns m..m+4, bottom columns l ≥ m+5 of rows m..m+4.
     for c in m..p {
@@ -739,13 +804,7 @@ fn solve_twisted5(first: &[usize], band: &[f64], m: usize, middle: &[f64; 25], x
     let p = m + W;
     // Forward: z_j = b_j − Σ_i L_ji z_i (top), z_i = b_i − Σ_l U_il z_l (bottom).
     forward_rows_dyn(first, W, band, x, 0..W);
-    for i in (n - W..n).rev() {
-        let mut s = x[i];
-        for l in (i + 1..n).rev().filter(|&l| first[l] <= i) {
-            s -= band[at(i, l)] * x[l];
-        }
-        x[i] = s;
-    }
+    forward_bottom_tail(first, band, x);
     let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = x[..W].try_into().expect("window");
     // v0..v4 = x_{i+5} .. x_{i+1}.
     let [mut v4, mut v3, mut v2, mut v1, mut v0]: [f64; W] = x[n - W..].try_into().expect("window");
@@ -773,7 +832,91 @@ fn solve_twisted5(first: &[usize], band: &[f64], m: usize, middle: &[f64; 25], x
         (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
         i -= 1;
     }
-    // The middle: its right-hand side less both ends' couplings, then L z = r, z/D, Lᵀ x = z.
+    let z = solve_middle5(first, band, m, middle, x);
+    // Backward: x_j = z_j/D_j − Σ_{q>j} L_qj x_q (top, j descending), x_i = z_i/D_i −
+    // Σ_{q<i} U_qi x_q (bottom, i ascending); each from the middle's five.
+    let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = z; // x_{j+1} .. x_{j+5}
+    let [mut v0, mut v1, mut v2, mut v3, mut v4]: [f64; W] = z; // x_{i−5} .. x_{i−1}
+    let (top, bottom) = (backward_top5, backward_bottom5);
+    let (mut j, mut i) = (m, p);
+    while j > 0 && i < n {
+        j -= 1;
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        i += 1;
+    }
+    while j > 0 {
+        j -= 1;
+        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
+    }
+    while i < n {
+        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+        i += 1;
+    }
+}
+
+/// The forward sweep of the last five rows (the bottom end's general start).
+#[inline(always)]
+fn forward_bottom_tail(first: &[usize], band: &[f64], x: &mut [f64]) {
+    let n = first.len();
+    for i in (n - 5..n).rev() {
+        let mut s = x[i];
+        for l in (i + 1..n).rev().filter(|&l| first[l] <= i) {
+            s -= band[at(i, l)] * x[l];
+        }
+        x[i] = s;
+    }
+}
+
+/// The forward sweep of [`solve_twisted5`]'s top end alone (rows `0..m`; reads the band's columns
+/// `0..m`), the same operations in the same order.
+#[inline(always)]
+fn forward_top_end5(first: &[usize], band: &[f64], m: usize, x: &mut [f64]) {
+    forward_rows_dyn(first, 5, band, x, 0..5);
+    let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; 5] = x[..5].try_into().expect("window");
+    for j in 5..m {
+        let s = forward_top5(band, j, x, [w0, w1, w2, w3, w4]);
+        x[j] = s;
+        (w0, w1, w2, w3, w4) = (w1, w2, w3, w4, s);
+    }
+}
+
+/// The forward sweep of [`solve_twisted5`]'s bottom end alone (rows `n−1` down to `m+5`; reads
+/// the band's columns `m+6..n`).
+#[inline(always)]
+fn forward_bottom_end5(first: &[usize], band: &[f64], m: usize, x: &mut [f64]) {
+    let n = first.len();
+    forward_bottom_tail(first, band, x);
+    let [mut v4, mut v3, mut v2, mut v1, mut v0]: [f64; 5] = x[n - 5..].try_into().expect("window");
+    for i in (m + 5..n - 5).rev() {
+        let r = forward_bottom5(band, i, x, [v0, v1, v2, v3, v4]);
+        x[i] = r;
+        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
+    }
+}
+
+/// The middle five of [`solve_twisted5`] once both forward sweeps are done: their right-hand side
+/// less both ends' couplings (`x[first[m]..m]` and `x[m+5..m+10]`), then `L z = r`, `z/D`,
+/// `Lᵀ x = z` densely; written into `x[m..m+5]` and returned.
+#[inline(always)]
+fn solve_middle5(
+    first: &[usize],
+    band: &[f64],
+    m: usize,
+    middle: &[f64; 25],
+    x: &mut [f64],
+) -> [f64; 5] {
+    const W: usize = 5;
+    let n = first.len();
+    let p = m + W;
     let mut z = [0.0; W];
     for (a, za) in z.iter_mut().enumerate() {
         let c = m + a;
@@ -802,33 +945,30 @@ fn solve_twisted5(first: &[usize], band: &[f64], m: usize, middle: &[f64; 25], x
         }
     }
     x[m..p].copy_from_slice(&z);
-    // Backward: x_j = z_j/D_j − Σ_{q>j} L_qj x_q (top, j descending), x_i = z_i/D_i −
-    // Σ_{q<i} U_qi x_q (bottom, i ascending); each from the middle's five.
-    let [mut w0, mut w1, mut w2, mut w3, mut w4]: [f64; W] = z; // x_{j+1} .. x_{j+5}
-    let [mut v0, mut v1, mut v2, mut v3, mut v4]: [f64; W] = z; // x_{i−5} .. x_{i−1}
-    let (top, bottom) = (backward_top5, backward_bottom5);
-    let (mut j, mut i) = (m, p);
-    while j > 0 && i < n {
-        j -= 1;
-        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
-        x[j] = s;
-        (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
-        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
-        x[i] = r;
-        (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
-        i += 1;
-    }
-    while j > 0 {
-        j -= 1;
-        let s = top(band, j, x, [w0, w1, w2, w3, w4]);
+    z
+}
+
+/// The backward sweep of [`solve_twisted5`]'s top end alone, from the middle's five `z` (rows
+/// `m−1` down to 0; reads the band's columns `0..m+5`).
+#[inline(always)]
+fn backward_top_end5(band: &[f64], m: usize, z: [f64; 5], x: &mut [f64]) {
+    let [mut w0, mut w1, mut w2, mut w3, mut w4] = z;
+    for j in (0..m).rev() {
+        let s = backward_top5(band, j, x, [w0, w1, w2, w3, w4]);
         x[j] = s;
         (w0, w1, w2, w3, w4) = (s, w0, w1, w2, w3);
     }
-    while i < n {
-        let r = bottom(band, i, x, [v0, v1, v2, v3, v4]);
+}
+
+/// The backward sweep of [`solve_twisted5`]'s bottom end alone, from the middle's five `z` (rows
+/// `m+5..n`; reads the band's columns `m+5..n`).
+#[inline(always)]
+fn backward_bottom_end5(band: &[f64], m: usize, z: [f64; 5], x: &mut [f64]) {
+    let [mut v0, mut v1, mut v2, mut v3, mut v4] = z;
+    for i in m + 5..x.len() {
+        let r = backward_bottom5(band, i, x, [v0, v1, v2, v3, v4]);
         x[i] = r;
         (v0, v1, v2, v3, v4) = (v1, v2, v3, v4, r);
-        i += 1;
     }
 }
 
@@ -1045,6 +1185,8 @@ impl LdltSolver {
         );
     }
 }
+
+mod split;
 
 #[cfg(test)]
 mod tests;

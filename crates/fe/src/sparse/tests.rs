@@ -328,3 +328,75 @@ fn ldlt_handles_negative_pivots() {
         }
     }
 }
+
+/// The twisted band on two threads ([`BandLdlt::use_partner`]) gives the one-thread twisted
+/// band's factor and solution to the bit: lines of 14 to 401 nodes (every meeting place modulo a
+/// node's three unknowns), negative pivots, factorised twice in the same solver and solved twice
+/// per factorisation; a band too short to be twisted stays on one thread.
+#[test]
+fn split_band_is_the_twisted_band_to_the_bit() {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for nodes in [14, 15, 16, 17, 18, 19, 40, 101, 401] {
+        for seed in [0, 3] {
+            let a = line_system(nodes, seed);
+            let n = a.n;
+            let mut one = BandLdlt::new(&a);
+            let mut two = one.clone();
+            assert!(two.use_partner().expect("thread"), "{nodes} nodes");
+            assert!(two.has_partner() && !two.clone().has_partner());
+            for (round, values) in [line_system(nodes, seed + 1), a.clone()].iter().enumerate() {
+                one.factor(values).expect("one thread");
+                two.factor(values).expect("two threads");
+                assert_eq!(*one.middle, *two.middle, "{nodes} nodes, round {round}");
+                let m = one.twist.expect("twisted");
+                let top = 0..6 * (m + 10);
+                assert_eq!(
+                    bits(&one.band[top.clone()]),
+                    bits(&two.band[top]),
+                    "{nodes} nodes, round {round}: the top store"
+                );
+                for k in 0..2 {
+                    let b: Vec<f64> = (0..n)
+                        .map(|i| (i as f64 * 0.37 + k as f64).cos() * 1e3)
+                        .collect();
+                    let (mut x1, mut x2) = (b.clone(), b);
+                    one.solve_in_place(&mut x1);
+                    two.solve_in_place(&mut x2);
+                    assert_eq!(
+                        bits(&x1),
+                        bits(&x2),
+                        "{nodes} nodes, round {round}, solve {k}"
+                    );
+                }
+            }
+        }
+    }
+    let mut short = BandLdlt::new(&line_system(12, 0));
+    assert!(!short.use_partner().expect("no thread"));
+    assert!(!short.has_partner());
+}
+
+/// On two threads the factorisation names a zero pivot in either end and in the middle block.
+#[test]
+fn split_band_reports_a_zero_pivot() {
+    let nodes = 30;
+    let n = 3 * nodes;
+    let m = (n - 5) / 2;
+    let mut band = BandLdlt::new(&line_system(nodes, 0));
+    assert!(band.use_partner().expect("thread"));
+    for e in [2, 7, m - 1, m, m + 2, m + 4, m + 5, n - 8, n - 3, n - 1] {
+        let mut a = line_system(nodes, 0);
+        a.values.fill(0.0);
+        for i in 0..n {
+            let d = a.slot(i, i).expect("diagonal");
+            a.values[d] = if i == e { 0.0 } else { 2.0 };
+        }
+        assert_eq!(
+            band.factor(&a),
+            Err(SolveError::Singular { equation: e }),
+            "{e}"
+        );
+    }
+    band.factor(&line_system(nodes, 0))
+        .expect("a regular one after");
+}

@@ -1,0 +1,238 @@
+//! A partner thread: the second processor of one run, awake when its work arrives.
+//!
+//! A step's phases are a few microseconds each (a solve of the heave benchmark's line takes about
+//! 4 µs), too short for a pool whose worker sleeps between jobs: waking a sleeping thread costs
+//! tens of microseconds (a rayon split of a 66 µs job measured 59–74 µs). So a [`Partner`] owns one
+//! thread for the life of the workspace that holds it. After each job the thread spins, reading
+//! one atomic, for [`SPIN`] before it parks; within a run's step loop the next job comes sooner
+//! than that, so it is picked up within a fraction of a microsecond, and a partner left idle (the
+//! run writing its outputs, or finished) sleeps and costs nothing.
+//!
+//! **The protocol.** The work `W` (the partner's own data: its half of a band, say) lives in a
+//! mutex. [`Partner::ask`] publishes a job (a sequence number and a code) with release ordering
+//! and unparks the thread; the thread takes the mutex, runs the job function on the work,
+//! releases it and publishes the job's number as done. [`Partner::wait`] spins until it reads
+//! that number (acquire ordering) and then hands the caller the work; [`Partner::work`] hands it
+//! over while no job is asked. The two sides never hold the mutex at once, so it is never
+//! contended: it is what lets the work cross threads in safe Rust, not a lock anyone waits on.
+//! A job asked while the thread is deciding to park leaves the unpark token set, and `park`
+//! returns at once: no wake-up is lost.
+//!
+//! **Oversubscribed.** Where the two threads share a processor with others (tests run side by
+//! side, a study's jobs), a waiting side that spins keeps the other from running: the waiter
+//! yields the processor after [`YIELD_AFTER`] spins. A partner that died (its job panicked) is
+//! noticed by the waiter, which then panics too rather than waiting for ever.
+
+use std::cell::Cell;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// How long the partner spins for its next job before it parks.
+pub const SPIN: Duration = Duration::from_micros(500);
+
+/// Spins a waiting caller makes before it yields the processor between reads.
+pub const YIELD_AFTER: u32 = 20_000;
+
+/// The job code that ends the thread.
+const EXIT: u8 = u8::MAX;
+
+/// What the two sides share.
+struct Shared<W> {
+    /// The last job asked: its sequence number `<< 8`, its code in the low byte.
+    asked: AtomicU64,
+    /// The sequence number of the last job done.
+    done: AtomicU64,
+    /// The partner's work.
+    work: Mutex<W>,
+}
+
+/// A thread that runs one job function on its own work, on request (see the module docs).
+pub struct Partner<W: Send + 'static> {
+    shared: Arc<Shared<W>>,
+    handle: Option<JoinHandle<()>>,
+    /// The sequence number of the last job asked (a `Cell`: a partner has one caller, and the
+    /// `Cell` keeps it from being shared between threads).
+    seq: Cell<u64>,
+}
+
+impl<W: Send + 'static> std::fmt::Debug for Partner<W> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Partner")
+            .field("jobs", &self.seq.get())
+            .finish()
+    }
+}
+
+impl<W: Send + 'static> Partner<W> {
+    /// Starts the thread with its work and the function that runs a job (`code` < 255) on it.
+    pub fn start(work: W, job: fn(&mut W, u8)) -> std::io::Result<Self> {
+        let shared = Arc::new(Shared {
+            asked: AtomicU64::new(0),
+            done: AtomicU64::new(0),
+            work: Mutex::new(work),
+        });
+        let theirs = Arc::clone(&shared);
+        let handle = std::thread::Builder::new()
+            .name("catena-partner".into())
+            .spawn(move || serve(&theirs, job))?;
+        Ok(Self {
+            shared,
+            handle: Some(handle),
+            seq: Cell::new(0),
+        })
+    }
+
+    /// Asks for job `code` and returns at once. The previous job must have been waited for.
+    pub fn ask(&self, code: u8) {
+        let seq = self.seq.get();
+        debug_assert_eq!(self.shared.done.load(Ordering::Acquire), seq);
+        self.seq.set(seq + 1);
+        self.shared
+            .asked
+            .store((seq + 1) << 8 | u64::from(code), Ordering::Release);
+        if let Some(h) = &self.handle {
+            h.thread().unpark();
+        }
+    }
+
+    /// Waits for the job asked last to be done and hands over the work.
+    ///
+    /// # Panics
+    /// When the partner thread has died (its job panicked).
+    pub fn wait(&self) -> MutexGuard<'_, W> {
+        let mut spins = 0u32;
+        let seq = self.seq.get();
+        while self.shared.done.load(Ordering::Acquire) != seq {
+            std::hint::spin_loop();
+            spins = spins.saturating_add(1);
+            if spins >= YIELD_AFTER {
+                assert!(
+                    !self.handle.as_ref().is_none_or(JoinHandle::is_finished),
+                    "the partner thread stopped before its job was done (it panicked)"
+                );
+                std::thread::yield_now();
+            }
+        }
+        self.work()
+    }
+
+    /// The work, while no job is asked.
+    pub fn work(&self) -> MutexGuard<'_, W> {
+        self.shared
+            .work
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+impl<W: Send + 'static> Drop for Partner<W> {
+    fn drop(&mut self) {
+        if let Some(h) = self.handle.take() {
+            let seq = self.seq.get() + 1;
+            self.shared
+                .asked
+                .store(seq << 8 | u64::from(EXIT), Ordering::Release);
+            h.thread().unpark();
+            // A job that panicked has already said so on the thread's own output.
+            let _ = h.join();
+        }
+    }
+}
+
+/// The partner's loop: spin (then park) for the next job, run it, say it is done.
+fn serve<W>(s: &Shared<W>, job: fn(&mut W, u8)) {
+    let mut last = 0u64;
+    loop {
+        let mut spins = 0u32;
+        let mut since = Instant::now();
+        let asked = loop {
+            let a = s.asked.load(Ordering::Acquire);
+            if a >> 8 != last {
+                break a;
+            }
+            std::hint::spin_loop();
+            spins = spins.wrapping_add(1);
+            if spins % 256 == 0 && since.elapsed() > SPIN {
+                std::thread::park();
+                since = Instant::now();
+            }
+        };
+        last = asked >> 8;
+        // The low byte is the code (the mask makes the narrowing exact).
+        let code = (asked & 0xff) as u8;
+        if code == EXIT {
+            return;
+        }
+        {
+            let mut w = s.work.lock().unwrap_or_else(PoisonError::into_inner);
+            job(&mut w, code);
+        }
+        s.done.store(last, Ordering::Release);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn add(w: &mut Vec<u64>, code: u8) {
+        let k = w.len() as u64;
+        w.push(k * 1000 + u64::from(code));
+    }
+
+    /// Every job asked is run once, in order, on the partner's work, and the caller sees the
+    /// work it left after each wait: 20 000 jobs, some asked at once, some after the partner
+    /// has parked.
+    #[test]
+    fn every_job_runs_once_in_order() {
+        let p = Partner::start(Vec::new(), add).expect("thread");
+        for k in 0..20_000u64 {
+            if k % 5000 == 4999 {
+                std::thread::sleep(2 * SPIN);
+            }
+            let code = (k % 200) as u8;
+            p.ask(code);
+            let w = p.wait();
+            assert_eq!(w.len() as u64, k + 1);
+            assert_eq!(w[k as usize], k * 1000 + u64::from(code));
+        }
+        p.work().clear();
+        p.ask(7);
+        assert_eq!(*p.wait(), vec![7]);
+    }
+
+    fn explode(_: &mut (), _: u8) {
+        panic!("on purpose");
+    }
+
+    /// A partner whose job panics makes the waiting caller panic instead of waiting for ever.
+    #[test]
+    fn a_dead_partner_is_reported() {
+        let p = Partner::start((), explode).expect("thread");
+        p.ask(1);
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| drop(p.wait())));
+        assert!(r.is_err());
+    }
+
+    /// Dropping a partner ends its thread, whether it spins or sleeps.
+    #[test]
+    fn dropping_ends_the_thread() {
+        for sleep in [false, true] {
+            let p = Partner::start(Vec::new(), add).expect("thread");
+            p.ask(1);
+            drop(p.wait());
+            if sleep {
+                std::thread::sleep(2 * SPIN);
+            }
+            let shared = Arc::clone(&p.shared);
+            drop(p);
+            assert_eq!(
+                Arc::strong_count(&shared),
+                1,
+                "the thread let go of its work"
+            );
+        }
+    }
+}
