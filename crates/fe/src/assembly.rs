@@ -22,6 +22,8 @@ use crate::beam::{
     corotational_forces_lanes, corotational_tangent_lanes, upper_index, ChordLanes, ForceLanes,
     ELEMENT_LANES, UPPER_PAIRS,
 };
+use std::ops::Range;
+
 use crate::model::LineModel;
 use crate::sparse::{LinearSolver, SolveError, SparseSym};
 
@@ -62,15 +64,59 @@ impl Placement {
 /// AVX2 or AVX-512 instructions where there are (no fused multiply-adds: the same values to the
 /// bit on every processor).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn element_forces_dispatch(asm: &mut Assembler, pl: &Placement, u: &[f64]) {
-    asm.element_forces_lanes(pl, u);
+fn element_forces_dispatch(asm: &mut Assembler, pl: &Placement, u: &[f64], elements: Range<usize>) {
+    asm.element_forces_lanes(pl, u, elements);
 }
 
 /// [`Assembler::assemble_elements_with_tangent`] for the processor it runs on (as
 /// [`element_forces_dispatch`]).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn element_tangents_dispatch(asm: &mut Assembler, pl: &Placement, u: &[f64]) {
-    asm.element_tangents_lanes(pl, u);
+fn element_tangents_dispatch(
+    asm: &mut Assembler,
+    pl: &Placement,
+    u: &[f64],
+    elements: Range<usize>,
+) {
+    asm.element_tangents_lanes(pl, u, elements);
+}
+
+/// A thread's part of a line (issue 48, two threads in one run): the elements it computes and the
+/// nodes it owns. Element `e` joins nodes `e` and `e + 1`, so a part that owns nodes `a..b`
+/// computes the elements `a − 1 ..= b − 1` that touch them (within the line): the element across
+/// a boundary between two parts is computed by both, and each part's own nodes get their sums
+/// whole, in the whole line's order ([`Assembler::assemble_structure_part`],
+/// [`crate::loads::assemble_part`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Part {
+    /// The elements it computes.
+    pub elements: Range<usize>,
+    /// The nodes it owns.
+    pub nodes: Range<usize>,
+}
+
+impl Part {
+    /// The whole line.
+    pub fn whole(model: &LineModel) -> Self {
+        Self {
+            elements: 0..model.elements.len(),
+            nodes: 0..model.nodes(),
+        }
+    }
+
+    /// The line in two parts, the first owning the nodes `0..=k` (`k` below the last node).
+    pub fn halves(model: &LineModel, k: usize) -> [Self; 2] {
+        let (ne, n) = (model.elements.len(), model.nodes());
+        [
+            Self {
+                elements: 0..k + 1,
+                nodes: 0..k + 1,
+            },
+            Self {
+                elements: k..ne,
+                nodes: k + 1..n,
+            },
+        ]
+    }
 }
 
 /// An element's stored tangent entries: `(entry of the element's upper triangle (see
@@ -235,47 +281,84 @@ impl Assembler {
         fj_rotation: f64,
         with_k: bool,
     ) {
-        // The element passes write every entry of the residual (no fill needed).
+        let ne = self.axial.len();
+        self.assemble_structure_part(model, pl, u, (fj_rotation, with_k), 0..ne);
+    }
+
+    /// [`Assembler::assemble_structure`] over the elements `elements` only (a thread's part of the
+    /// line, issue 48): the residual of the nodes strictly inside the range (`start + 1 ..
+    /// end`) and of the line's end nodes the range holds, and the tangent's columns of those
+    /// nodes' equations, are those of the whole line to the bit; the two nodes at a range's inner
+    /// ends hold a part of their sums only (each element's forces are computed whole, so the
+    /// element across a boundary is computed by both parts). With the tangent, the columns the
+    /// range touches are cleared first and no others.
+    pub fn assemble_structure_part(
+        &mut self,
+        model: &LineModel,
+        pl: &Placement,
+        u: &[f64],
+        (fj_rotation, with_k): (f64, bool),
+        elements: Range<usize>,
+    ) {
+        let dofs = 3 * elements.start..3 * (elements.end + 1);
+        // The element passes write every entry of the part's residual (no fill needed).
         if with_k {
-            self.k.clear();
-            self.assemble_elements_with_tangent(pl, u);
+            self.clear_columns(model, dofs.clone());
+            self.assemble_elements_with_tangent(pl, u, elements);
         } else {
-            self.assemble_element_forces(pl, u);
+            self.assemble_element_forces(pl, u, elements);
         }
-        let q = &pl.base;
         // Zipped, not indexed: the indexed loop reloaded the residual's pointer and checked its
         // bound at every entry and ran scalar (2.3 % of the 3-hour storm's samples).
-        for (r, f) in self.residual.iter_mut().zip(&model.dead_load) {
+        for (r, f) in self.residual[dofs.clone()]
+            .iter_mut()
+            .zip(&model.dead_load[dofs.clone()])
+        {
             *r -= f;
         }
         if let Some(fj) = &model.flexjoint {
             let g = 3 * fj.node + 2;
-            self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral - fj_rotation);
-            if with_k {
-                if let Some(eq) = model.equation[g] {
-                    self.k.values[self.diag_slots[eq]] += fj.stiffness;
+            if dofs.contains(&g) {
+                let q = &pl.base;
+                self.residual[g] += fj.stiffness * (q[g] + u[g] - fj.neutral - fj_rotation);
+                if with_k {
+                    if let Some(eq) = model.equation[g] {
+                        self.k.values[self.diag_slots[eq]] += fj.stiffness;
+                    }
                 }
             }
         }
+    }
+
+    /// Zeroes the tangent's columns of the free equations among `dofs`.
+    fn clear_columns(&mut self, model: &LineModel, dofs: Range<usize>) {
+        let eqs = &model.equation[dofs];
+        let (Some(lo), Some(hi)) = (
+            eqs.iter().find_map(|e| *e),
+            eqs.iter().rev().find_map(|e| *e),
+        ) else {
+            return;
+        };
+        self.k.clear_columns(lo..hi + 1);
     }
 
     /// The elements' forces, [`ELEMENT_LANES`] elements at a time
     /// ([`corotational_forces_lanes`]: the same values as element by element), added to the
     /// residual in element order. Compiled for the baseline processor and for AVX2 and AVX-512,
     /// chosen at run time ([`element_forces_dispatch`]).
-    fn assemble_element_forces(&mut self, pl: &Placement, u: &[f64]) {
-        element_forces_dispatch(self, pl, u);
+    fn assemble_element_forces(&mut self, pl: &Placement, u: &[f64], elements: Range<usize>) {
+        element_forces_dispatch(self, pl, u, elements);
     }
 
     #[inline(always)]
-    fn element_forces_lanes(&mut self, pl: &Placement, u: &[f64]) {
+    fn element_forces_lanes(&mut self, pl: &Placement, u: &[f64], elements: Range<usize>) {
         const L: usize = ELEMENT_LANES;
-        let ne = self.axial.len();
+        let ne = elements.end;
         let mut inp = ChordLanes::<L>::default();
         let mut out = ForceLanes::<L>::default();
         let mut carry = [0.0; 3];
-        for e0 in (0..ne).step_by(L) {
-            let m = self.gather_chords(pl, u, e0, &mut inp);
+        for e0 in elements.step_by(L) {
+            let m = self.gather_chords(pl, u, (e0, ne), &mut inp);
             corotational_forces_lanes(&inp, &mut out);
             for k in 0..m {
                 self.put_element_forces(e0 + k, k, &out, &mut carry);
@@ -287,21 +370,26 @@ impl Assembler {
     /// The elements' forces and tangents, [`ELEMENT_LANES`] elements at a time
     /// ([`corotational_tangent_lanes`]), added in element order; compiled as
     /// [`Assembler::assemble_element_forces`] is ([`element_tangents_dispatch`]).
-    fn assemble_elements_with_tangent(&mut self, pl: &Placement, u: &[f64]) {
-        element_tangents_dispatch(self, pl, u);
+    fn assemble_elements_with_tangent(
+        &mut self,
+        pl: &Placement,
+        u: &[f64],
+        elements: Range<usize>,
+    ) {
+        element_tangents_dispatch(self, pl, u, elements);
     }
 
     #[inline(always)]
     #[allow(clippy::needless_range_loop)]
-    fn element_tangents_lanes(&mut self, pl: &Placement, u: &[f64]) {
+    fn element_tangents_lanes(&mut self, pl: &Placement, u: &[f64], elements: Range<usize>) {
         const L: usize = ELEMENT_LANES;
-        let ne = self.axial.len();
+        let ne = elements.end;
         let mut inp = ChordLanes::<L>::default();
         let mut out = ForceLanes::<L>::default();
         let mut kl = [[0.0; L]; 21];
         let mut carry = [0.0; 3];
-        for e0 in (0..ne).step_by(L) {
-            let m = self.gather_chords(pl, u, e0, &mut inp);
+        for e0 in elements.step_by(L) {
+            let m = self.gather_chords(pl, u, (e0, ne), &mut inp);
             corotational_tangent_lanes(&inp, &mut out, &mut kl);
             for k in 0..m {
                 let e = e0 + k;
@@ -325,18 +413,18 @@ impl Assembler {
         self.residual[3 * ne..3 * ne + 3].copy_from_slice(&carry);
     }
 
-    /// Elements `e0..` (up to [`ELEMENT_LANES`] of them) into `inp`; returns how many there are
-    /// (lanes past the last element get a harmless unit element, never added).
+    /// Elements `e0..end` (up to [`ELEMENT_LANES`] of them) into `inp`; returns how many there
+    /// are (lanes past the last element get a harmless unit element, never added).
     #[inline(always)]
     fn gather_chords<const L: usize>(
         &self,
         pl: &Placement,
         u: &[f64],
-        e0: usize,
+        (e0, end): (usize, usize),
         inp: &mut ChordLanes<L>,
     ) -> usize {
         let q = &pl.base;
-        let m = L.min(self.axial.len() - e0);
+        let m = L.min(end - e0);
         for k in 0..L {
             let e = e0 + k.min(m - 1);
             let b = 3 * e;
@@ -392,10 +480,16 @@ impl Assembler {
         u: &[f64],
         v: &[f64],
         beta: f64,
-        c_scale: f64,
-        with_c: bool,
+        (c_scale, with_c): (f64, bool),
+        elements: Range<usize>,
     ) {
-        for (e, el) in model.elements.iter().enumerate() {
+        for (e, el) in model
+            .elements
+            .iter()
+            .enumerate()
+            .take(elements.end)
+            .skip(elements.start)
+        {
             let b = 3 * e;
             let [cx, cz] = pl.chords[e];
             let ve = [v[b], v[b + 1], v[b + 2], v[b + 3], v[b + 4], v[b + 5]];
@@ -676,103 +770,4 @@ mod non_finite_tests {
 }
 
 #[cfg(test)]
-mod assembly_tests {
-    use super::*;
-    use crate::beam::{corotational_beam_chord, Section};
-    use crate::model::{LineSpec, Segment, Support};
-
-    /// A 23-element line (not a multiple of the four lanes), pinned at the top and fixed at the
-    /// anchor, bent into a shape with every kind of element: the ends' (some dofs prescribed) and
-    /// interior ones, and one chord laid from the top pointing along −x (the angle wrap's side).
-    fn bent_line() -> (LineModel, Placement, Vec<f64>) {
-        let seg = |length, element_length| {
-            Segment::uniform(
-                length,
-                element_length,
-                Section {
-                    ea: 3.4e9,
-                    ei: 17.7e6,
-                },
-                1010.0,
-                145.0,
-                0.2286,
-            )
-        };
-        let model = LineModel::build(&LineSpec {
-            segments: vec![seg(40.0, 4.0), seg(13.0, 1.0)],
-            top: Support::Pinned,
-            anchor: Support::Fixed,
-            seabed: None,
-            flexjoint: Some((5.0e5, 0.1)),
-        })
-        .expect("model");
-        let n = model.nodes();
-        let mut q = vec![0.0; 3 * n];
-        for i in 0..n {
-            let s = model.arc[i];
-            q[3 * i] = -s * (0.02 * s).cos();
-            q[3 * i + 1] = 60.0 - s * (0.03 * s).sin();
-            q[3 * i + 2] = -std::f64::consts::PI + 0.01 * s;
-        }
-        let u = (0..3 * n)
-            .map(|g| 1e-3 * ((g * 7919) % 113) as f64 - 0.05)
-            .collect();
-        (model, Placement::new(&q), u)
-    }
-
-    /// The residual and tangent as a plain element-by-element assembly forms them: zeros, then
-    /// each element's forces and stiffness added in element order ([`corotational_beam_chord`]).
-    fn plain(
-        model: &LineModel,
-        pl: &Placement,
-        u: &[f64],
-        asm: &Assembler,
-    ) -> (Vec<f64>, Vec<f64>) {
-        let mut r = vec![0.0; 3 * model.nodes()];
-        let mut k = vec![0.0; asm.k.values.len()];
-        for (e, el) in model.elements.iter().enumerate() {
-            let b = 3 * e;
-            let [cx, cz] = pl.chords[e];
-            let resp = corotational_beam_chord(
-                cx + (u[b + 3] - u[b]),
-                cz + (u[b + 4] - u[b + 1]),
-                pl.base[b + 2] + u[b + 2],
-                pl.base[b + 5] + u[b + 5],
-                el.l0,
-                &el.section,
-                true,
-            );
-            for a in 0..6 {
-                r[b + a] += resp.force[a];
-            }
-            let (pairs, len) = &asm.elem_pairs[e];
-            for &(t, s) in &pairs[..*len as usize] {
-                let (i, j) = UPPER_PAIRS[t as usize];
-                k[s] += resp.stiffness[i][j];
-            }
-        }
-        (r, k)
-    }
-
-    #[test]
-    fn element_passes_are_the_plain_assembly_to_the_bit() {
-        let (model, pl, u) = bent_line();
-        let mut asm = Assembler::new(&model).expect("assembler");
-        let ne = model.elements.len();
-        // Every element whose six dofs are free and whose neighbours' are too takes the common
-        // offsets; the ends' do not.
-        let regular = asm.elem_base.iter().filter(|b| **b != NONE).count();
-        assert!(regular >= ne - 3, "{regular} of {ne} elements regular");
-        assert!(asm.elem_base[0] == NONE && asm.elem_base[ne - 1] == NONE);
-        let (r, k) = plain(&model, &pl, &u, &asm);
-        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        asm.residual.fill(f64::NAN);
-        asm.assemble_element_forces(&pl, &u);
-        assert_eq!(bits(&asm.residual), bits(&r), "forces only");
-        asm.residual.fill(f64::NAN);
-        asm.k.clear();
-        asm.assemble_elements_with_tangent(&pl, &u);
-        assert_eq!(bits(&asm.residual), bits(&r), "forces with the tangent");
-        assert_eq!(bits(&asm.k.values), bits(&k), "tangent");
-    }
-}
+mod tests;

@@ -47,9 +47,11 @@
 
 use catena_seabed::law::{SeabedHistory, TrialMemo};
 
-use crate::assembly::{Assembler, Placement};
+use std::ops::Range;
+
+use crate::assembly::{Assembler, Part, Placement};
 use crate::environment::Hydro;
-use crate::model::{AxialFriction, LineModel};
+use crate::model::{Attachment, AxialFriction, LineModel};
 use crate::waves::Kinematics;
 
 /// What the loads need of the Model: the line, its placement and the optional effects.
@@ -187,6 +189,20 @@ pub fn assemble(
     asm: &mut Assembler,
     scratch: &mut LoadScratch,
 ) {
+    assemble_part(m, at, seabed, scale, (asm, scratch), &Part::whole(m.line));
+}
+
+/// [`assemble`] over a part of the line (issue 48): the loads of its elements (structural damping)
+/// and of its nodes (the rest), so that the part's own nodes get the whole line's sums to the bit
+/// ([`Part`]); a trial seabed history is evaluated (and kept) at the part's nodes only.
+pub fn assemble_part(
+    m: &LoadModel<'_>,
+    at: &Iterate<'_>,
+    seabed: SeabedPass<'_>,
+    scale: TangentScale,
+    (asm, scratch): (&mut Assembler, &mut LoadScratch),
+    part: &Part,
+) {
     if let Some(beta) = m.structural_damping {
         asm.add_structural_damping(
             m.line,
@@ -194,30 +210,47 @@ pub fn assemble(
             at.u,
             at.v,
             beta,
-            scale.k * scale.c_v,
-            scale.with_k,
+            (scale.k * scale.c_v, scale.with_k),
+            part.elements.clone(),
         );
     }
+    let nodes = part.nodes.clone();
     if let Some(sb) = &m.line.seabed {
         let anchors = match &seabed {
             SeabedPass::Trial { anchors, .. } => Some(*anchors),
             SeabedPass::Backbone => None,
         };
-        add_seabed(m, at, seabed, scale, asm, &mut scratch.seabed_force);
+        add_seabed(
+            m,
+            at,
+            seabed,
+            scale,
+            asm,
+            (&mut scratch.seabed_force, &nodes),
+        );
         if let (Some(f), Some(anchors)) = (&sb.friction, anchors) {
-            add_friction(f, m, at, anchors, scale, asm, &scratch.seabed_force);
+            add_friction(
+                f,
+                m,
+                at,
+                anchors,
+                scale,
+                asm,
+                (&scratch.seabed_force, &nodes),
+            );
         }
     }
     if let Some(h) = m.hydro {
         // Compiled for the sea's coefficients everywhere and for a line whose types have their own
         // (chosen once: the sea's are then constants of the loop).
+        let tangents = (&mut scratch.node_tangent, &nodes);
         if m.line.node_coefficients.is_empty() {
-            add_hydrodynamics::<false>(h, m, at, scale, asm, &mut scratch.node_tangent);
+            add_hydrodynamics::<false>(h, m, at, scale, asm, tangents);
         } else {
-            add_hydrodynamics::<true>(h, m, at, scale, asm, &mut scratch.node_tangent);
+            add_hydrodynamics::<true>(h, m, at, scale, asm, tangents);
         }
         if !m.line.attachments.is_empty() {
-            add_attachment_drag(h, m, at, scale, asm);
+            add_attachment_drag(h, m, at, scale, (asm, &nodes));
         }
     }
 }
@@ -230,11 +263,12 @@ fn add_attachment_drag(
     m: &LoadModel<'_>,
     at: &Iterate<'_>,
     scale: TangentScale,
-    asm: &mut Assembler,
+    (asm, nodes): (&mut Assembler, &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
     let with_c = scale.with_k && scale.c_v != 0.0;
-    for a in model.attachments.iter().filter(|a| a.drag_area > 0.0) {
+    let drag = |a: &&Attachment| a.drag_area > 0.0 && nodes.contains(&a.node);
+    for a in model.attachments.iter().filter(drag) {
         let i = a.node;
         let z = pl.base[3 * i + 1] + at.u[3 * i + 1];
         let w = at
@@ -269,12 +303,12 @@ fn add_seabed(
     pass: SeabedPass<'_>,
     scale: TangentScale,
     asm: &mut Assembler,
-    seabed_force: &mut [f64],
+    part: (&mut [f64], &Range<usize>),
 ) {
     if m.line.mudline_profile.is_empty() {
-        seabed_loops::<false>(m, at, pass, scale, asm, seabed_force);
+        seabed_loops::<false>(m, at, pass, scale, asm, part);
     } else {
-        seabed_loops::<true>(m, at, pass, scale, asm, seabed_force);
+        seabed_loops::<true>(m, at, pass, scale, asm, part);
     }
 }
 
@@ -319,14 +353,14 @@ fn seabed_loops<const SLOPED: bool>(
     pass: SeabedPass<'_>,
     scale: TangentScale,
     asm: &mut Assembler,
-    seabed_force: &mut [f64],
+    (seabed_force, nodes): (&mut [f64], &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
     let Some(sb) = &model.seabed else { return };
     let (u, v) = (at.u, at.v);
     match pass {
         SeabedPass::Backbone => {
-            for i in 0..model.nodes() {
+            for i in nodes.clone() {
                 let (z_pen, _, n) = penetration_of::<SLOPED>(model, pl, u, u, i);
                 if z_pen <= 0.0 {
                     seabed_force[i] = 0.0;
@@ -349,7 +383,7 @@ fn seabed_loops<const SLOPED: bool>(
             ..
         } => {
             let mut spare = TrialMemo::default();
-            for i in 0..model.nodes() {
+            for i in nodes.clone() {
                 let (z, zdot, n) = penetration_of::<SLOPED>(model, pl, u, v, i);
                 // The trial history is kept only in the pass expected to converge; the others need
                 // the force alone. Only a law that keeps something has memos (the linear law's
@@ -391,13 +425,17 @@ fn add_friction(
     anchors: &[f64],
     scale: TangentScale,
     asm: &mut Assembler,
-    seabed_force: &[f64],
+    (seabed_force, nodes): (&[f64], &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
     if !model.mudline_profile.is_empty() {
-        return add_friction_on_profile(f, m, at, anchors, scale, asm, seabed_force);
+        return add_friction_on_profile(f, m, at, anchors, scale, asm, (seabed_force, nodes));
     }
-    for (i, (&p, &a)) in seabed_force.iter().zip(anchors).enumerate() {
+    let own = nodes.start..nodes.end.min(seabed_force.len()).min(anchors.len());
+    for (i, (&p, &a)) in own
+        .clone()
+        .zip(seabed_force[own.clone()].iter().zip(&anchors[own]))
+    {
         let n = model.tributary[i] * p;
         if n <= 0.0 {
             continue;
@@ -421,10 +459,11 @@ fn add_friction_on_profile(
     anchors: &[f64],
     scale: TangentScale,
     asm: &mut Assembler,
-    seabed_force: &[f64],
+    (seabed_force, nodes): (&[f64], &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
-    for (i, (&p, a)) in seabed_force.iter().zip(anchors.chunks_exact(2)).enumerate() {
+    let pairs = seabed_force.iter().zip(anchors.chunks_exact(2)).enumerate();
+    for (i, (&p, a)) in pairs.take(nodes.end).skip(nodes.start) {
         let n = model.tributary[i] * p;
         if n <= 0.0 {
             continue;
@@ -505,7 +544,7 @@ fn add_hydrodynamics<const OWN: bool>(
     at: &Iterate<'_>,
     scale: TangentScale,
     asm: &mut Assembler,
-    node_tangent: &mut [Vec<f64>; 2],
+    (node_tangent, nodes): (&mut [Vec<f64>; 2], &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
     let (u, v) = (at.u, at.v);
@@ -513,9 +552,15 @@ fn add_hydrodynamics<const OWN: bool>(
     // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
     // are two long dependency chains, and in one loop too few nodes fit in the processor's
     // window to overlap them.
-    node_tangents(&pl.base, u, node_tangent);
+    let dofs = 3 * nodes.start..3 * nodes.end;
+    let [cos, sin] = node_tangent;
+    node_tangents(
+        &pl.base[dofs.clone()],
+        &u[dofs],
+        [&mut cos[nodes.clone()], &mut sin[nodes.clone()]],
+    );
     let hc = h.coefficients();
-    for i in 0..model.nodes() {
+    for i in nodes.clone() {
         let c = if OWN {
             &model.node_coefficients[i]
         } else {
@@ -560,7 +605,7 @@ fn add_hydrodynamics<const OWN: bool>(
 /// cosine of [`crate::fastmath::sin_cos`] run four or eight nodes at a time (the same operations:
 /// the same values to the bit).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-pub fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: &mut [Vec<f64>; 2]) {
+pub fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: [&mut [f64]; 2]) {
     let th = base
         .chunks_exact(3)
         .zip(u.chunks_exact(3))

@@ -130,6 +130,18 @@ impl SparseSym {
         self.values.fill(0.0);
     }
 
+    /// Sets the values of the columns `columns` to zero (a part of the line's tangent, each
+    /// column's rows above its diagonal included).
+    pub fn clear_columns(&mut self, columns: std::ops::Range<usize>) {
+        let slots = self.column_slots(columns);
+        self.values[slots].fill(0.0);
+    }
+
+    /// The places in `values` of the columns `columns`.
+    pub fn column_slots(&self, columns: std::ops::Range<usize>) -> std::ops::Range<usize> {
+        self.col_ptr[columns.start]..self.col_ptr[columns.end]
+    }
+
     /// `y = A·x` (for tests and residual checks).
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         y.fill(0.0);

@@ -36,7 +36,8 @@ pub(super) fn lump_mass(dm: &DynamicModel, u: &[f64], ws: &mut DynWorkspace) {
         ws.mass.copy_from_slice(&ws.structural_mass);
         return;
     };
-    loads::node_tangents(&pl.base, u, &mut ws.loads.node_tangent);
+    let [cos, sin] = &mut ws.loads.node_tangent;
+    loads::node_tangents(&pl.base, u, [cos, sin]);
     let [cos, sin] = &ws.loads.node_tangent;
     let hc = h.coefficients();
     // The line's own mass plus the added mass, in one pass (the same sums as a copy and `+=`).

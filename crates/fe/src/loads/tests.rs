@@ -688,3 +688,111 @@ fn a_body_in_waves_is_dragged_by_the_water() {
     assert!((along[3 * i] - still[3 * i]).abs() <= 1e-12 * c);
     assert!((along[3 * i + 1] - still[3 * i + 1]).abs() <= 1e-12 * c);
 }
+
+/// Every load over the two parts of the line ([`assemble_part`] on [`Part::halves`]) gives each
+/// part's own nodes the whole line's residual, tangent columns, seabed forces and kept trial
+/// histories to the bit, at every boundary: the Randolph–Quiggin trial with friction (stick and
+/// slip), drag in a current with its damping, structural damping and attached bodies' drag; and a
+/// part evaluates no trial history outside its nodes.
+#[test]
+fn parts_of_the_line_get_the_whole_loads_to_the_bit() {
+    use crate::model::Attachment;
+    let rq = Law::RandolphQuiggin(RandolphQuiggin::new(RqParams::table1()).expect("rq"));
+    let (mut model, pl) = line(rq);
+    if let Some(sb) = model.seabed.as_mut() {
+        sb.friction = Some(AxialFriction {
+            mu: 0.6,
+            mobilisation: 0.01,
+        });
+    }
+    let body = |drag_area: f64| Attachment {
+        node: 0,
+        mass: 50.0,
+        weight: -200.0,
+        drag_area,
+        added_mass: 30.0,
+    };
+    let model = model.with_attachments(&[(2.0, body(0.8)), (6.0, body(1.5))]);
+    let sb = model.seabed.as_ref().expect("seabed");
+    let committed: Vec<SeabedHistory> = (0..N)
+        .map(|i| {
+            let z0 = penetration(&model, &pl, &[0.0; 3 * N], &[0.0; 3 * N], i)
+                .expect("z")
+                .0;
+            sb.seabed.start_of_dynamics(z0.max(0.0))
+        })
+        .collect();
+    let anchors: Vec<f64> = (0..N)
+        .map(|i| pl.base[3 * i] - [0.004, -0.004, 0.03, -0.03][i % 4])
+        .collect();
+    let u: Vec<f64> = (0..3 * N)
+        .map(|g| 2e-3 * (((g * 7919) % 13) as f64 / 13.0 - 0.5))
+        .collect();
+    let v: Vec<f64> = (0..3 * N)
+        .map(|g| 0.4 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
+        .collect();
+    let h = hydro();
+    let m = LoadModel {
+        line: &model,
+        placement: &pl,
+        hydro: Some(&h),
+        structural_damping: Some(0.01),
+    };
+    let at = Iterate {
+        u: &u,
+        v: &v,
+        wave_kin: &[],
+    };
+    let scale = TangentScale {
+        with_k: true,
+        k: 0.9,
+        c_v: 40.0,
+    };
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let run = |part: &Part| {
+        let mut asm = Assembler::new(&model).expect("assembler");
+        let mut scratch = LoadScratch::new(N);
+        asm.residual.fill(0.0);
+        asm.k.clear();
+        let untouched = sb.seabed.untouched();
+        let mut kept = vec![untouched; N];
+        let pass = SeabedPass::Trial {
+            committed: &committed,
+            anchors: &anchors,
+            dt: 0.1,
+            memo: &mut [],
+            keep: Some(&mut kept),
+        };
+        assemble_part(&m, &at, pass, scale, (&mut asm, &mut scratch), part);
+        (asm, scratch, kept)
+    };
+    let (whole, ws, wkept) = run(&Part::whole(&model));
+    assert!(wkept.iter().any(|h| *h != sb.seabed.untouched()));
+    for k in 0..N - 1 {
+        for part in Part::halves(&model, k) {
+            let (asm, scratch, kept) = run(&part);
+            let dofs = 3 * part.nodes.start..3 * part.nodes.end;
+            assert_eq!(
+                bits(&asm.residual[dofs.clone()]),
+                bits(&whole.residual[dofs.clone()]),
+                "boundary {k}, {part:?}"
+            );
+            let eq: Vec<usize> = model.equation[dofs].iter().filter_map(|e| *e).collect();
+            let cols = eq[0]..eq[eq.len() - 1] + 1;
+            assert_eq!(
+                bits(&asm.k.values[asm.k.column_slots(cols.clone())]),
+                bits(&whole.k.values[whole.k.column_slots(cols)]),
+                "boundary {k}, {part:?}: tangent"
+            );
+            let own = part.nodes.clone();
+            assert_eq!(
+                bits(&scratch.seabed_force[own.clone()]),
+                bits(&ws.seabed_force[own.clone()])
+            );
+            assert_eq!(kept[own.clone()], wkept[own.clone()]);
+            for i in (0..N).filter(|i| !own.contains(i)) {
+                assert_eq!(kept[i], sb.seabed.untouched(), "node {i} outside {part:?}");
+            }
+        }
+    }
+}
