@@ -22,6 +22,9 @@
 //! side, a study's jobs), a waiting side that spins keeps the other from running: the waiter
 //! yields the processor after [`YIELD_AFTER`] spins. A partner that died (its job panicked) is
 //! noticed by the waiter, which then panics too rather than waiting for ever.
+//!
+//! **Meetings.** Two threads that each run the same loop on their own part of a line meet where
+//! the parts touch, each leaving a few numbers for the other: a [`Seat`] each ([`seats`]).
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -120,10 +123,7 @@ impl<W: Send + 'static> Partner<W> {
 
     /// The work, while no job is asked.
     pub fn work(&self) -> MutexGuard<'_, W> {
-        self.shared
-            .work
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
+        lock(&self.shared.work)
     }
 }
 
@@ -166,11 +166,104 @@ fn serve<W>(s: &Shared<W>, job: fn(&mut W, u8)) {
             return;
         }
         {
-            let mut w = s.work.lock().unwrap_or_else(PoisonError::into_inner);
+            let mut w = lock(&s.work);
             job(&mut w, code);
         }
         s.done.store(last, Ordering::Release);
     }
+}
+
+/// One side of a meeting place for two threads that run the same loop on their parts of a line
+/// (issue 48): at each meeting each side leaves a few numbers, waits for the other, and takes what
+/// the other left. [`seats`] makes the pair.
+///
+/// Meeting `c` uses the mailboxes of parity `c mod 2`: a side can leave its numbers for meeting
+/// `c + 2` only after the other has arrived at `c + 1`, that is after it has read those of meeting
+/// `c`, so nothing is overwritten before it is read. Arrival is an atomic count (release when
+/// leaving, acquire when reading); the mailboxes are mutexes that the two sides never hold at once.
+/// A side that waits for an other side that has gone (its thread ended or panicked) panics rather
+/// than waiting for ever.
+pub struct Seat {
+    table: Arc<Table>,
+    me: usize,
+    /// The meetings this side has been to.
+    count: u64,
+}
+
+/// What the two seats share.
+struct Table {
+    arrived: [AtomicU64; 2],
+    /// `mail[side][parity]`.
+    mail: [[Mutex<Vec<f64>>; 2]; 2],
+    capacity: usize,
+}
+
+impl std::fmt::Debug for Seat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Seat")
+            .field("side", &self.me)
+            .field("meetings", &self.count)
+            .finish()
+    }
+}
+
+/// Two seats of one meeting place, each leaving at most `capacity` numbers at a meeting.
+pub fn seats(capacity: usize) -> (Seat, Seat) {
+    let mailbox = || Mutex::new(Vec::with_capacity(capacity));
+    let table = Arc::new(Table {
+        arrived: [AtomicU64::new(0), AtomicU64::new(0)],
+        mail: [[mailbox(), mailbox()], [mailbox(), mailbox()]],
+        capacity,
+    });
+    let seat = |me| Seat {
+        table: Arc::clone(&table),
+        me,
+        count: 0,
+    };
+    (seat(0), seat(1))
+}
+
+impl Seat {
+    /// Leaves `mine` for the other side, waits for it to reach the same meeting, and copies what
+    /// it left into `theirs` (which must have its length). Allocates nothing.
+    ///
+    /// # Panics
+    /// When `mine` is longer than the capacity, `theirs` is not as long as what the other side
+    /// left, or the other side has gone.
+    pub fn exchange(&mut self, mine: &[f64], theirs: &mut [f64]) {
+        assert!(
+            mine.len() <= self.table.capacity,
+            "a meeting's numbers over the capacity"
+        );
+        self.count += 1;
+        let (c, other) = (self.count, 1 - self.me);
+        let parity = usize::from(c % 2 == 1);
+        {
+            let mut m = lock(&self.table.mail[self.me][parity]);
+            m.clear();
+            m.extend_from_slice(mine);
+        }
+        self.table.arrived[self.me].store(c, Ordering::Release);
+        let mut spins = 0u32;
+        while self.table.arrived[other].load(Ordering::Acquire) < c {
+            std::hint::spin_loop();
+            spins = spins.saturating_add(1);
+            if spins >= YIELD_AFTER {
+                assert!(
+                    Arc::strong_count(&self.table) == 2,
+                    "the other side of the meeting has gone"
+                );
+                std::thread::yield_now();
+            }
+        }
+        theirs.copy_from_slice(&lock(&self.table.mail[other][parity]));
+    }
+}
+
+/// A mutex's guard, whether or not a thread panicked while holding it (the numbers are rewritten
+/// at each meeting).
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 #[cfg(test)]
@@ -234,5 +327,48 @@ mod tests {
                 "the thread let go of its work"
             );
         }
+    }
+
+    /// Two threads meet 50 000 times, leaving numbers of every length up to the capacity: each
+    /// takes exactly what the other left at the same meeting, whichever arrives first.
+    #[test]
+    fn each_side_takes_what_the_other_left_at_the_same_meeting() {
+        let (mut a, mut b) = seats(5);
+        let k = 50_000u32;
+        let other = std::thread::spawn(move || {
+            let mut theirs = [0.0; 5];
+            for c in 0..k {
+                let len = (c % 6) as usize;
+                let mine: Vec<f64> = (0..len).map(|j| f64::from(c) + 0.5 + j as f64).collect();
+                b.exchange(&mine, &mut theirs[..len]);
+                for (j, t) in theirs[..len].iter().enumerate() {
+                    assert_eq!(*t, -(f64::from(c) + j as f64));
+                }
+            }
+        });
+        let mut theirs = [0.0; 5];
+        for c in 0..k {
+            let len = (c % 6) as usize;
+            let mine: Vec<f64> = (0..len).map(|j| -(f64::from(c) + j as f64)).collect();
+            a.exchange(&mine, &mut theirs[..len]);
+            for (j, t) in theirs[..len].iter().enumerate() {
+                assert_eq!(*t, f64::from(c) + 0.5 + j as f64);
+            }
+            if c % 10_000 == 0 {
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        }
+        other.join().expect("the other side");
+    }
+
+    /// A side whose other side has gone panics instead of waiting for ever.
+    #[test]
+    fn a_meeting_with_a_side_gone_is_reported() {
+        let (mut a, b) = seats(1);
+        drop(b);
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            a.exchange(&[1.0], &mut [0.0]);
+        }));
+        assert!(r.is_err());
     }
 }
