@@ -20,7 +20,8 @@
 //!
 //! **Oversubscribed.** Where the two threads share a processor with others (tests run side by
 //! side, a study's jobs), a waiting side that spins keeps the other from running: the waiter
-//! yields the processor after [`YIELD_AFTER`] spins. A partner that died (its job panicked) is
+//! yields the processor after spinning for [`YIELD_AFTER`], and so does an idle partner. A
+//! partner that died (its job panicked) is
 //! noticed by the waiter, which then panics too rather than waiting for ever.
 //!
 //! **Meetings.** Two threads that each run the same loop on their own part of a line meet where
@@ -35,8 +36,28 @@ use std::time::{Duration, Instant};
 /// How long the partner spins for its next job before it parks.
 pub const SPIN: Duration = Duration::from_micros(500);
 
-/// Spins a waiting caller makes before it yields the processor between reads.
-pub const YIELD_AFTER: u32 = 20_000;
+/// How long a waiting side spins before it yields the processor between reads: longer than most
+/// waits of a step, short against a time slice.
+pub const YIELD_AFTER: Duration = Duration::from_micros(20);
+
+/// Waits until `ready`, spinning, then yielding the processor after [`YIELD_AFTER`]; panics with
+/// `gone` when `alive` says the other side has gone.
+#[inline]
+fn wait_until(ready: impl Fn() -> bool, alive: impl Fn() -> bool, gone: &str) {
+    let mut spins = 0u32;
+    let mut since = None;
+    while !ready() {
+        std::hint::spin_loop();
+        spins = spins.wrapping_add(1);
+        if spins % 64 == 0 {
+            let t0 = *since.get_or_insert_with(Instant::now);
+            if t0.elapsed() > YIELD_AFTER {
+                assert!(alive(), "{gone}");
+                std::thread::yield_now();
+            }
+        }
+    }
+}
 
 /// The job code that ends the thread.
 const EXIT: u8 = u8::MAX;
@@ -105,19 +126,12 @@ impl<W: Send + 'static> Partner<W> {
     /// # Panics
     /// When the partner thread has died (its job panicked).
     pub fn wait(&self) -> MutexGuard<'_, W> {
-        let mut spins = 0u32;
         let seq = self.seq.get();
-        while self.shared.done.load(Ordering::Acquire) != seq {
-            std::hint::spin_loop();
-            spins = spins.saturating_add(1);
-            if spins >= YIELD_AFTER {
-                assert!(
-                    !self.handle.as_ref().is_none_or(JoinHandle::is_finished),
-                    "the partner thread stopped before its job was done (it panicked)"
-                );
-                std::thread::yield_now();
-            }
-        }
+        wait_until(
+            || self.shared.done.load(Ordering::Acquire) == seq,
+            || !self.handle.as_ref().is_none_or(JoinHandle::is_finished),
+            "the partner thread stopped before its job was done (it panicked)",
+        );
         self.work()
     }
 
@@ -154,9 +168,15 @@ fn serve<W>(s: &Shared<W>, job: fn(&mut W, u8)) {
             }
             std::hint::spin_loop();
             spins = spins.wrapping_add(1);
-            if spins % 256 == 0 && since.elapsed() > SPIN {
-                std::thread::park();
-                since = Instant::now();
+            if spins % 256 == 0 {
+                let idle = since.elapsed();
+                if idle > SPIN {
+                    std::thread::park();
+                    since = Instant::now();
+                } else if idle > YIELD_AFTER {
+                    // Where the processors are oversubscribed, the caller may be waiting for one.
+                    std::thread::yield_now();
+                }
             }
         };
         last = asked >> 8;
@@ -244,18 +264,11 @@ impl Seat {
             m.extend_from_slice(mine);
         }
         self.table.arrived[self.me].store(c, Ordering::Release);
-        let mut spins = 0u32;
-        while self.table.arrived[other].load(Ordering::Acquire) < c {
-            std::hint::spin_loop();
-            spins = spins.saturating_add(1);
-            if spins >= YIELD_AFTER {
-                assert!(
-                    Arc::strong_count(&self.table) == 2,
-                    "the other side of the meeting has gone"
-                );
-                std::thread::yield_now();
-            }
-        }
+        wait_until(
+            || self.table.arrived[other].load(Ordering::Acquire) >= c,
+            || Arc::strong_count(&self.table) == 2,
+            "the other side of the meeting has gone",
+        );
         theirs.copy_from_slice(&lock(&self.table.mail[other][parity]));
     }
 }

@@ -24,7 +24,7 @@ use super::{
     backward_bottom_end5, backward_top_end5, factor_bottom5, factor_middle5, factor_top5,
     forward_bottom_end5, forward_top_end5, solve_middle5, BandLdlt, SolveError, SparseSym,
 };
-use crate::partner::Partner;
+use crate::partner::{Partner, Seat};
 
 /// The partner's job: factorise the bottom end.
 const FACTOR: u8 = 1;
@@ -107,29 +107,13 @@ impl BandLdlt {
         const W: usize = 5;
         let p = m + W;
         let partner = self.partner.0.as_ref().expect("a partner");
-        // Where each column's values end in the pattern (one past its diagonal).
-        let ends = &a.col_ptr[1..];
         {
             let mut b = partner.work();
-            for (col, &end) in b.band.chunks_exact_mut(W + 1).zip(ends).skip(p) {
-                col.copy_from_slice(&a.values[end - (W + 1)..end]);
-            }
-            for &h in self.above.iter().filter(|&&h| h >= p * (W + 1)) {
-                b.band[h] = 0.0;
-            }
+            let n = b.first.len();
+            fill_columns((&mut b.band, &self.map, &self.above), a, p..n);
         }
         partner.ask(FACTOR);
-        // The top columns as `factor` copies them: the first W by the map, the rest in blocks.
-        let head = ends[W - 1];
-        for (v, &k) in a.values[..head].iter().zip(&self.map[..head]) {
-            self.band[k] = *v;
-        }
-        for (col, &end) in self.band.chunks_exact_mut(W + 1).zip(ends).take(p).skip(W) {
-            col.copy_from_slice(&a.values[end - (W + 1)..end]);
-        }
-        for &h in self.above.iter().take_while(|&&h| h < p * (W + 1)) {
-            self.band[h] = 0.0;
-        }
+        fill_columns((&mut self.band, &self.map, &self.above), a, 0..p);
         let top = factor_top5(&self.first, &mut self.band, m);
         let mut b = partner.wait();
         top?;
@@ -160,5 +144,116 @@ impl BandLdlt {
         partner.ask(BACKWARD);
         backward_top_end5(&self.band, m, z, x);
         x[p..n].copy_from_slice(&partner.wait().x[p..n]);
+    }
+
+    /// One side of the twisted band's factorisation by two threads that each hold a copy of this
+    /// band and meet at `seat` (issue 48): side 0 the top end `0..m` and the middle, side 1 the
+    /// bottom end `m+5..n`. Each side's band holds its own columns' factor afterwards (side 0's
+    /// also the middle's), the same values to the bit as [`BandLdlt::factor`] on one thread
+    /// (`band_sides_are_the_twisted_band_to_the_bit`); both sides return the same outcome (a zero
+    /// pivot in the top end is named first). Two meetings; a band that is not twisted is an
+    /// error of the caller's (panics).
+    pub fn factor_side(
+        &mut self,
+        a: &SparseSym,
+        side: usize,
+        seat: &mut Seat,
+    ) -> Result<(), SolveError> {
+        const W: usize = 5;
+        let m = self.twist.expect("a band factorised from both ends");
+        let (n, p) = (self.first.len(), m + W);
+        let shared = p * (W + 1)..(p + W) * (W + 1);
+        // A message: the side's outcome (NaN: none yet, −1: done, else the singular equation)
+        // and the five columns the middle reads and writes.
+        let mut mine = [f64::NAN; 1 + W * (W + 1)];
+        let mut theirs = [0.0; 1 + W * (W + 1)];
+        let code = |r: &Result<(), SolveError>| match r {
+            Ok(()) => -1.0,
+            Err(SolveError::Singular { equation }) => *equation as f64,
+            Err(_) => f64::MAX,
+        };
+        let outcome = |c: f64| match c {
+            c if c < 0.0 => Ok(()),
+            // An equation number, exact in an f64.
+            c if c < f64::MAX => Err(SolveError::Singular {
+                equation: c as usize,
+            }),
+            _ => Err(SolveError::Symbolic("the other side failed".into())),
+        };
+        if side == 0 {
+            fill_columns((&mut self.band, &self.map, &self.above), a, 0..p);
+            let top = factor_top5(&self.first, &mut self.band, m);
+            mine[0] = code(&top);
+            seat.exchange(&mine, &mut theirs);
+            top?;
+            outcome(theirs[0])?;
+            self.band[shared.clone()].copy_from_slice(&theirs[1..]);
+            let middle = factor_middle5(&self.first, &mut self.band, m, &mut self.middle);
+            mine[0] = code(&middle);
+            mine[1..].copy_from_slice(&self.band[shared]);
+            seat.exchange(&mine, &mut []);
+            middle
+        } else {
+            fill_columns((&mut self.band, &self.map, &self.above), a, p..n);
+            let bottom = factor_bottom5(&self.first, &mut self.band, m);
+            mine[0] = code(&bottom);
+            mine[1..].copy_from_slice(&self.band[shared.clone()]);
+            seat.exchange(&mine, &mut theirs);
+            outcome(theirs[0])?;
+            bottom?;
+            seat.exchange(&[], &mut theirs);
+            self.band[shared].copy_from_slice(&theirs[1..]);
+            outcome(theirs[0])
+        }
+    }
+
+    /// One side of the solve with [`BandLdlt::factor_side`]'s factor: side 0 solves `x[0..m+5]`
+    /// (the top end and the middle), side 1 `x[m+5..n]`, each from its own right-hand side's
+    /// entries there; two meetings. The same values to the bit as [`BandLdlt::solve_in_place`].
+    pub fn solve_side(&self, side: usize, seat: &mut Seat, x: &mut [f64]) {
+        const W: usize = 5;
+        let m = self.twist.expect("a band factorised from both ends");
+        let p = m + W;
+        if side == 0 {
+            forward_top_end5(&self.first, &self.band, m, x);
+            let mut reach = [0.0; W];
+            seat.exchange(&[], &mut reach);
+            x[p..p + W].copy_from_slice(&reach);
+            let z = solve_middle5(&self.first, &self.band, m, &self.middle, x);
+            seat.exchange(&z, &mut []);
+            backward_top_end5(&self.band, m, z, x);
+        } else {
+            forward_bottom_end5(&self.first, &self.band, m, x);
+            seat.exchange(&x[p..p + W], &mut []);
+            let mut z = [0.0; W];
+            seat.exchange(&[], &mut z);
+            x[m..p].copy_from_slice(&z);
+            backward_bottom_end5(&self.band, m, z, x);
+        }
+    }
+}
+
+/// Fills a band's columns `columns` from `a` as [`BandLdlt::factor`] does (the first five by the
+/// map, the others in blocks), and zeroes their places above the skyline.
+fn fill_columns(
+    (band, map, above): (&mut [f64], &[usize], &[usize]),
+    a: &SparseSym,
+    columns: std::ops::Range<usize>,
+) {
+    const W: usize = 5;
+    let ends = &a.col_ptr[1..];
+    if columns.start < W {
+        let head = ends[W - 1];
+        for (v, &k) in a.values[..head].iter().zip(&map[..head]) {
+            band[k] = *v;
+        }
+    }
+    let blocks = band.chunks_exact_mut(W + 1).zip(ends);
+    for (col, &end) in blocks.take(columns.end).skip(columns.start.max(W)) {
+        col.copy_from_slice(&a.values[end - (W + 1)..end]);
+    }
+    let places = columns.start * (W + 1)..columns.end * (W + 1);
+    for &h in above.iter().filter(|h| places.contains(h)) {
+        band[h] = 0.0;
     }
 }

@@ -400,3 +400,84 @@ fn split_band_reports_a_zero_pivot() {
     band.factor(&line_system(nodes, 0))
         .expect("a regular one after");
 }
+
+/// The twisted band by two threads that each hold a copy and meet at a pair of seats
+/// ([`BandLdlt::factor_side`], [`BandLdlt::solve_side`]): the top side's unknowns `0..m+5` and
+/// the bottom side's `m+5..n` are the one-thread solution to the bit, on lines of 14 to 401 nodes,
+/// factorised twice and solved twice each time; a zero pivot is named alike on both sides,
+/// wherever it is.
+#[test]
+fn band_sides_are_the_twisted_band_to_the_bit() {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let rhs = |n: usize, k: usize| -> Vec<f64> {
+        (0..n)
+            .map(|i| (i as f64 * 0.37 + k as f64).cos() * 1e3)
+            .collect()
+    };
+    for nodes in [14, 17, 19, 40, 101, 401] {
+        let systems = [line_system(nodes, 1), line_system(nodes, 0)];
+        let mut one = BandLdlt::new(&systems[0]);
+        let (n, p) = (systems[0].n, one.twist.expect("twisted") + 5);
+        let (mut top, bottom) = (one.clone(), one.clone());
+        let (mut seat0, mut seat1) = crate::partner::seats(31);
+        let other = {
+            let (systems, mut bottom) = (systems.clone(), bottom);
+            std::thread::spawn(move || {
+                let mut out = Vec::new();
+                for a in &systems {
+                    bottom.factor_side(a, 1, &mut seat1).expect("bottom");
+                    for k in 0..2 {
+                        let mut x = rhs(n, k);
+                        bottom.solve_side(1, &mut seat1, &mut x);
+                        out.push(x);
+                    }
+                }
+                out
+            })
+        };
+        let mut tops = Vec::new();
+        for a in &systems {
+            top.factor_side(a, 0, &mut seat0).expect("top");
+            for k in 0..2 {
+                let mut x = rhs(n, k);
+                top.solve_side(0, &mut seat0, &mut x);
+                tops.push(x);
+            }
+        }
+        let bottoms = other.join().expect("the bottom side");
+        let mut k = 0;
+        for a in &systems {
+            one.factor(a).expect("one thread");
+            for r in 0..2 {
+                let mut x = rhs(n, r);
+                one.solve_in_place(&mut x);
+                assert_eq!(bits(&tops[k][..p]), bits(&x[..p]), "{nodes} nodes, top");
+                assert_eq!(
+                    bits(&bottoms[k][p..]),
+                    bits(&x[p..]),
+                    "{nodes} nodes, bottom"
+                );
+                k += 1;
+            }
+        }
+    }
+    let nodes = 30;
+    let n = 3 * nodes;
+    let m = (n - 5) / 2;
+    let band = BandLdlt::new(&line_system(nodes, 0));
+    for e in [2, m - 1, m, m + 4, m + 5, n - 3] {
+        let mut a = line_system(nodes, 0);
+        a.values.fill(0.0);
+        for i in 0..n {
+            let d = a.slot(i, i).expect("diagonal");
+            a.values[d] = if i == e { 0.0 } else { 2.0 };
+        }
+        let (mut s0, mut s1) = crate::partner::seats(31);
+        let (mut top, mut bottom) = (band.clone(), band.clone());
+        let b = a.clone();
+        let other = std::thread::spawn(move || bottom.factor_side(&b, 1, &mut s1));
+        let want = Err(SolveError::Singular { equation: e });
+        assert_eq!(top.factor_side(&a, 0, &mut s0), want, "top side, {e}");
+        assert_eq!(other.join().expect("bottom"), want, "bottom side, {e}");
+    }
+}
