@@ -19,6 +19,13 @@
 //! Each factorisation and each solve meets the partner twice. Which zero pivot a factorisation
 //! names, when both ends have one, is the top end's (one thread names whichever its interleaved
 //! loop meets first); the values of a factorisation that succeeds do not depend on it.
+//!
+//! Handed the bottom columns and half the right-hand side from the caller, this gains little
+//! (`benches/README.md`): the copies cost what the split saves. [`BandLdlt::factor_side`] and
+//! [`BandLdlt::solve_side`] are the same split for two threads that each hold a copy of the band
+//! and fill their own columns from their own assembly (each thread running the same Newton loop
+//! on its part of the line, issue 48): only the five columns at the middle (factorisation) and
+//! ten unknowns (solve) cross, at a pair of [`Seat`]s.
 
 use super::{
     backward_bottom_end5, backward_top_end5, factor_bottom5, factor_middle5, factor_top5,
@@ -90,11 +97,6 @@ impl BandLdlt {
             self.partner.0 = Some(Partner::start(bottom, job)?);
         }
         Ok(true)
-    }
-
-    /// Goes back to one thread (ends the partner thread).
-    pub fn drop_partner(&mut self) {
-        self.partner.0 = None;
     }
 
     /// Whether a partner thread does the bottom end.
