@@ -431,11 +431,8 @@ fn add_friction(
     if !model.mudline_profile.is_empty() {
         return add_friction_on_profile(f, m, at, anchors, scale, asm, (seabed_force, nodes));
     }
-    let own = nodes.start..nodes.end.min(seabed_force.len()).min(anchors.len());
-    for (i, (&p, &a)) in own
-        .clone()
-        .zip(seabed_force[own.clone()].iter().zip(&anchors[own]))
-    {
+    let pairs = seabed_force.iter().zip(anchors).enumerate();
+    for (i, (&p, &a)) in pairs.take(nodes.end).skip(nodes.start) {
         let n = model.tributary[i] * p;
         if n <= 0.0 {
             continue;

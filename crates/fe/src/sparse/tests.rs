@@ -205,6 +205,18 @@ fn line_system(nodes: usize, seed: usize) -> SparseSym {
     a
 }
 
+/// A line's pattern of `nodes` nodes with its couplings zero and its diagonal 2 but a zero at
+/// equation `e`: each pivot is its diagonal whatever the order, so the zero pivot is at `e`.
+fn decoupled(nodes: usize, e: usize) -> SparseSym {
+    let mut a = line_system(nodes, 0);
+    a.values.fill(0.0);
+    for i in 0..a.n {
+        let d = a.slot(i, i).expect("diagonal");
+        a.values[d] = if i == e { 0.0 } else { 2.0 };
+    }
+    a
+}
+
 /// The twisted factorisation (from both ends, [`factor_twisted5`]) solves a line's system as
 /// the top-down one does, to rounding: `A x = b` to 1e-11 relative and the two solutions to
 /// 1e-11 of the largest unknown, on lines of 14 to 401 nodes (every meeting place modulo a
@@ -259,13 +271,7 @@ fn twisted_band_reports_a_zero_pivot() {
     let n = 3 * nodes;
     let m = (n - 5) / 2;
     for e in [2, 7, m - 1, m, m + 2, m + 4, m + 5, n - 8, n - 3, n - 1] {
-        let mut a = line_system(nodes, 0);
-        // Decoupled: each pivot is its diagonal, whatever the order.
-        a.values.fill(0.0);
-        for i in 0..n {
-            let d = a.slot(i, i).expect("diagonal");
-            a.values[d] = if i == e { 0.0 } else { 2.0 };
-        }
+        let a = decoupled(nodes, e);
         let mut band = BandLdlt::new(&a);
         assert_eq!(band.twist, Some(m));
         assert_eq!(
@@ -385,12 +391,7 @@ fn split_band_reports_a_zero_pivot() {
     let mut band = BandLdlt::new(&line_system(nodes, 0));
     assert!(band.use_partner().expect("thread"));
     for e in [2, 7, m - 1, m, m + 2, m + 4, m + 5, n - 8, n - 3, n - 1] {
-        let mut a = line_system(nodes, 0);
-        a.values.fill(0.0);
-        for i in 0..n {
-            let d = a.slot(i, i).expect("diagonal");
-            a.values[d] = if i == e { 0.0 } else { 2.0 };
-        }
+        let a = decoupled(nodes, e);
         assert_eq!(
             band.factor(&a),
             Err(SolveError::Singular { equation: e }),
@@ -401,6 +402,33 @@ fn split_band_reports_a_zero_pivot() {
         .expect("a regular one after");
 }
 
+/// Side `side`'s solutions of [`band_sides_are_the_twisted_band_to_the_bit`]: each system
+/// factorised, then solved for two right-hand sides.
+fn side_solutions(
+    mut band: BandLdlt,
+    side: usize,
+    seat: &mut crate::partner::Seat,
+    systems: &[SparseSym],
+) -> Vec<Vec<f64>> {
+    let mut out = Vec::new();
+    for a in systems {
+        band.factor_side(a, side, seat).expect("a factorisation");
+        for k in 0..2 {
+            let mut x = sides_rhs(a.n, k);
+            band.solve_side(side, seat, &mut x);
+            out.push(x);
+        }
+    }
+    out
+}
+
+/// The right-hand sides of [`band_sides_are_the_twisted_band_to_the_bit`].
+fn sides_rhs(n: usize, k: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| (i as f64 * 0.37 + k as f64).cos() * 1e3)
+        .collect()
+}
+
 /// The twisted band by two threads that each hold a copy and meet at a pair of seats
 /// ([`BandLdlt::factor_side`], [`BandLdlt::solve_side`]): the top side's unknowns `0..m+5` and
 /// the bottom side's `m+5..n` are the one-thread solution to the bit, on lines of 14 to 401 nodes,
@@ -409,47 +437,22 @@ fn split_band_reports_a_zero_pivot() {
 #[test]
 fn band_sides_are_the_twisted_band_to_the_bit() {
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    let rhs = |n: usize, k: usize| -> Vec<f64> {
-        (0..n)
-            .map(|i| (i as f64 * 0.37 + k as f64).cos() * 1e3)
-            .collect()
-    };
     for nodes in [14, 17, 19, 40, 101, 401] {
         let systems = [line_system(nodes, 1), line_system(nodes, 0)];
         let mut one = BandLdlt::new(&systems[0]);
         let (n, p) = (systems[0].n, one.twist.expect("twisted") + 5);
-        let (mut top, bottom) = (one.clone(), one.clone());
         let (mut seat0, mut seat1) = crate::partner::seats(31);
         let other = {
-            let (systems, mut bottom) = (systems.clone(), bottom);
-            std::thread::spawn(move || {
-                let mut out = Vec::new();
-                for a in &systems {
-                    bottom.factor_side(a, 1, &mut seat1).expect("bottom");
-                    for k in 0..2 {
-                        let mut x = rhs(n, k);
-                        bottom.solve_side(1, &mut seat1, &mut x);
-                        out.push(x);
-                    }
-                }
-                out
-            })
+            let (systems, bottom) = (systems.clone(), one.clone());
+            std::thread::spawn(move || side_solutions(bottom, 1, &mut seat1, &systems))
         };
-        let mut tops = Vec::new();
-        for a in &systems {
-            top.factor_side(a, 0, &mut seat0).expect("top");
-            for k in 0..2 {
-                let mut x = rhs(n, k);
-                top.solve_side(0, &mut seat0, &mut x);
-                tops.push(x);
-            }
-        }
+        let tops = side_solutions(one.clone(), 0, &mut seat0, &systems);
         let bottoms = other.join().expect("the bottom side");
         let mut k = 0;
         for a in &systems {
             one.factor(a).expect("one thread");
             for r in 0..2 {
-                let mut x = rhs(n, r);
+                let mut x = sides_rhs(n, r);
                 one.solve_in_place(&mut x);
                 assert_eq!(bits(&tops[k][..p]), bits(&x[..p]), "{nodes} nodes, top");
                 assert_eq!(
@@ -466,12 +469,7 @@ fn band_sides_are_the_twisted_band_to_the_bit() {
     let m = (n - 5) / 2;
     let band = BandLdlt::new(&line_system(nodes, 0));
     for e in [2, m - 1, m, m + 4, m + 5, n - 3] {
-        let mut a = line_system(nodes, 0);
-        a.values.fill(0.0);
-        for i in 0..n {
-            let d = a.slot(i, i).expect("diagonal");
-            a.values[d] = if i == e { 0.0 } else { 2.0 };
-        }
+        let a = decoupled(nodes, e);
         let (mut s0, mut s1) = crate::partner::seats(31);
         let (mut top, mut bottom) = (band.clone(), band.clone());
         let b = a.clone();
