@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use catena_fe::dynamics::{self, DynWorkspace};
+use catena_fe::dynamics::{self, DynWorkspace, Pair};
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {
@@ -18,6 +18,14 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let st = catena::run::statics::solve(scene.clone()).expect("statics");
             catena::run::run(st, &mut [], catena::run::RunOptions::default()).expect("run")
+        })
+    });
+    // The same on one thread (`--threads 1`): the run above steps on two where it may (issue 48).
+    g.bench_function("heave_benchmark_full_1t", |b| {
+        b.iter(|| {
+            let st = catena::run::statics::solve(scene.clone()).expect("statics");
+            let opts = catena::run::RunOptions::with_threads(Some(1));
+            catena::run::run(st, &mut [], opts).expect("run")
         })
     });
     // What the outputs cost (issue 31: at most 10 % over the bare stepper): the same 2000 steps
@@ -34,6 +42,23 @@ fn bench(c: &mut Criterion) {
             let steps = (spec.duration / spec.dt).round() as usize;
             for _ in 0..steps {
                 dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+            }
+            s
+        })
+    });
+    // The same on two threads (issue 48): the line stepped in two parts by a [`Pair`], the second
+    // part's State handed over after every step; the same States to the bit.
+    g.bench_function("heave_bare_stepper_2t", |b| {
+        b.iter(|| {
+            let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+            let mut ws = DynWorkspace::new(&dm.line).expect("ws");
+            let mut s = dynamics::initial_state(&dm, &st.u, &mut ws);
+            let mut pair = Pair::start(&dm, &s, &mut ws)
+                .expect("a thread")
+                .expect("a line in two parts");
+            let steps = (spec.duration / spec.dt).round() as usize;
+            for _ in 0..steps {
+                pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
             }
             s
         })

@@ -568,12 +568,6 @@ impl Assembler {
         self.k.values.len()
     }
 
-    /// Factorises and solves the tangent on two threads from now on where its band allows it
-    /// ([`LinearSolver::use_partner`]): the same values to the bit. Returns whether it does.
-    pub fn use_partner(&mut self) -> std::io::Result<bool> {
-        self.solver.use_partner()
-    }
-
     /// Solves with the last factorisation, in place.
     pub fn solve_tangent(&mut self, rhs: &mut [f64]) {
         self.solver.solve_in_place(rhs);
@@ -771,3 +765,5 @@ mod non_finite_tests {
 
 #[cfg(test)]
 mod tests;
+
+mod sides;

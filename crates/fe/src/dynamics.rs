@@ -73,12 +73,14 @@
 
 mod carry;
 mod mass;
+mod pair;
 mod water;
 mod workspace;
 
 use carry::at_rest;
 pub use carry::{carried_state, Carry};
 use mass::{add_mass_tangent, lump_mass, structural_mass};
+pub use pair::Pair;
 use water::wave_kinematics;
 use workspace::friction_anchor_len;
 pub use workspace::DynWorkspace;
@@ -94,7 +96,7 @@ use crate::loads::{self, penetration, Iterate, LoadModel, SeabedPass, TangentSca
 use crate::model::LineModel;
 use crate::motion::{Kinematics as TopKinematics, TopMotion};
 pub use crate::newton::{max_abs, residual_floor, MAX_BACKTRACKS};
-use crate::newton::{worst_node, Accepted, Newton, Pass, Verdict};
+use crate::newton::{Accepted, Newton, Pass, Verdict};
 use crate::sparse::SolveError;
 use crate::vessel::Vessel;
 use crate::wave_sampling::KinematicsGrid;
@@ -409,8 +411,15 @@ fn forces_at_iterate(
     let with_k = pass == Pass::Tangent;
     let keep = pass == Pass::KeepingHistories;
     ws.histories_kept = keep && dm.line.seabed.is_some();
-    let asm = &mut ws.asm;
-    asm.assemble_structure(&dm.line, &dm.placement, &ws.u, ws.fj_rotation, with_k);
+    let (asm, part) = (&mut ws.asm, &ws.scope.part);
+    let structure = (ws.fj_rotation, with_k);
+    asm.assemble_structure_part(
+        &dm.line,
+        &dm.placement,
+        &ws.u,
+        structure,
+        part.elements.clone(),
+    );
     if with_k {
         asm.scale_tangent(k_scale);
     }
@@ -431,7 +440,7 @@ fn forces_at_iterate(
         k: k_scale,
         c_v,
     };
-    loads::assemble(&dm.loads(), &at, seabed, scale, asm, &mut ws.loads);
+    loads::assemble_part(&dm.loads(), &at, seabed, scale, (asm, &mut ws.loads), part);
     // Exchanged, not copied: the next assembly's element pass writes every entry of the residual
     // before anything adds to it.
     std::mem::swap(&mut ws.f, &mut asm.residual);
@@ -454,7 +463,13 @@ fn attempt(
     let t1 = state.t + dt;
     lump_mass(dm, &state.u, ws);
     // Predictor: constant acceleration, or constant velocity when `careful` (a retry).
-    sc.predict((&state.u, &state.v, &state.a), careful, &mut ws.u);
+    let d = ws.scope.reach_dofs.clone();
+    let start = (
+        &state.u[d.clone()],
+        &state.v[d.clone()],
+        &state.a[d.clone()],
+    );
+    sc.predict(start, careful, &mut ws.u[d]);
     let top = dm.top_at(t1);
     // A top that holds its rotation turns with the vessel's pitch since the step's start.
     let turns = dm.vessel.is_some()
@@ -481,23 +496,16 @@ fn attempt(
         let pass = nt.pass();
         forces_at_iterate(dm, state, ws, pass, k_scale, c_v, dt);
         // Residual G = M a + (1+α) F − α F_n at every dof, then on the free equations.
-        sc.residual(&ws.mass, &ws.a, &ws.f, &state.f_prev, &mut ws.g_all);
+        let (nodes, d) = ws.scope.own();
+        let (mass, a, f) = (&ws.mass[nodes.clone()], &ws.a[d.clone()], &ws.f[d.clone()]);
+        sc.residual(mass, a, f, &state.f_prev[d.clone()], &mut ws.g_all[d]);
         if pass == Pass::Tangent {
-            add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
+            add_mass_tangent(&mut ws.asm, model, c_m, (&ws.mass, nodes));
         }
-        let sq: f64 = ws
-            .free_runs
-            .iter()
-            .map(|&(g0, _, len)| {
-                // Eight interleaved partial sums: one running sum is a chain of dependent additions.
-                let g = &ws.g_all[g0..g0 + len];
-                crate::fastmath::lane_dot(g, g)
-            })
-            .sum();
-        let r = sq.sqrt() / refn;
+        let r = ws.residual_sq().sqrt() / refn;
         let accepted = match nt.judge(it, r) {
             Verdict::Backtrack { back } => {
-                for &(g0, e0, len) in &ws.free_runs {
+                for &(g0, e0, len) in &ws.free_runs[ws.scope.reach_runs.clone()] {
                     for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
                         *u += back * dq;
                     }
@@ -507,14 +515,15 @@ fn attempt(
             Verdict::Accepted(a) => a,
         };
         // The free equations of an accepted iterate (a halved correction's are not kept: on
-        // failure the worst equation is looked up in the last accepted one's, [`worst_node`]).
-        for &(g0, e0, len) in &ws.free_runs {
+        // failure the worst equation is looked up in the last accepted one's,
+        // [`DynWorkspace::worst_node`]).
+        for &(g0, e0, len) in &ws.free_runs[ws.scope.own_runs.clone()] {
             ws.g[e0..e0 + len].copy_from_slice(&ws.g_all[g0..g0 + len]);
         }
         let (refresh_tangent, factor) = match accepted {
             Accepted::Diverged => {
                 return Err(Failed {
-                    last: worst_node(model, nt.last(), &ws.g),
+                    last: ws.worst_node(model, nt.last()),
                     diverged: true,
                 })
             }
@@ -533,19 +542,18 @@ fn attempt(
             // Not converged after all: the tangent at this iterate (the residual is recomputed
             // with it, to the same values).
             forces_at_iterate(dm, state, ws, Pass::Tangent, k_scale, c_v, dt);
-            add_mass_tangent(&mut ws.asm, model, c_m, &ws.mass);
+            let nodes = ws.scope.part.nodes.clone();
+            add_mass_tangent(&mut ws.asm, model, c_m, (&ws.mass, nodes));
         }
         if factor {
-            if ws.asm.factor_tangent().is_err() {
+            if ws.factor_tangent().is_err() {
                 // `advance` drops the factorisation of every failed attempt.
                 break;
             }
             ws.factored_dt = Some(dt);
         }
-        ws.dq.copy_from_slice(&ws.g);
-        ws.asm.solve_tangent(&mut ws.dq);
-        let step = max_abs(&ws.dq);
-        for &(g0, e0, len) in &ws.free_runs {
+        let step = ws.correction();
+        for &(g0, e0, len) in &ws.free_runs[ws.scope.reach_runs.clone()] {
             for (u, dq) in ws.u[g0..g0 + len].iter_mut().zip(&ws.dq[e0..e0 + len]) {
                 *u -= dq;
             }
@@ -560,7 +568,7 @@ fn attempt(
         }
     }
     Err(Failed {
-        last: worst_node(model, nt.last(), &ws.g),
+        last: ws.worst_node(model, nt.last()),
         diverged: false,
     })
 }
@@ -577,7 +585,7 @@ struct Failed {
 #[inline]
 fn relations(sc: &StepCoefficients, state: &DynState, ws: &mut DynWorkspace) {
     sc.relations(
-        &ws.free_runs,
+        &ws.free_runs[ws.scope.reach_runs.clone()],
         (&state.u, &state.v, &state.a),
         (&ws.u, &mut ws.v, &mut ws.a),
     );
@@ -594,7 +602,9 @@ fn commit(dm: &DynamicModel, state: &mut DynState, ws: &mut DynWorkspace, t1: f6
         ws.histories_kept = false;
     } else if let Some(sb) = &model.seabed {
         let mut spare = TrialMemo::default();
-        for (i, h) in state.history.iter_mut().enumerate() {
+        let nodes = ws.scope.part.nodes.clone();
+        let own = state.history.iter_mut().enumerate();
+        for (i, h) in own.take(nodes.end).skip(nodes.start) {
             let (z, zdot) = penetration(model, pl, &ws.u, &ws.v, i).unwrap_or((0.0, 0.0));
             *h = model
                 .seabed_law(i)
@@ -669,7 +679,7 @@ pub fn advance(
 ) -> Result<StepInfo, StepError> {
     let model = &dm.line;
     let refn = ws.reference;
-    let noise = residual_floor(model, &state.u) / refn;
+    let noise = crate::newton::residual_floor_at(model, ws.largest_translation(&state.u)) / refn;
     let target = state.t + dt;
     // An attempt leaves the State untouched when it fails, so the State is saved only before the
     // first sub-step that does not complete the step (after a cut): later failures restore it.

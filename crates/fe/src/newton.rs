@@ -221,22 +221,25 @@ impl Newton {
     }
 }
 
-/// `(iteration, residual)` of the last accepted iterate and the node of the largest entry of its
-/// residual on the free equations, `g` (the first of equal ones).
-pub fn worst_node(model: &LineModel, (it, r): (usize, f64), g: &[f64]) -> (usize, f64, usize) {
-    let mut eq = 0;
-    let mut big = 0.0;
-    for (e, x) in g.iter().enumerate() {
+/// The largest `|g_e|` over the equations `eqs` and the first equation where it is (`0` and
+/// `eqs.start` when every entry is zero).
+pub fn largest_entry(g: &[f64], eqs: std::ops::Range<usize>) -> (f64, usize) {
+    let (mut big, mut eq) = (0.0, eqs.start);
+    for (e, x) in g.iter().enumerate().take(eqs.end).skip(eqs.start) {
         if x.abs() > big {
             (big, eq) = (x.abs(), e);
         }
     }
-    let node = model
+    (big, eq)
+}
+
+/// The node whose dof is free equation `eq` (0 when none is).
+pub fn node_of_equation(model: &LineModel, eq: usize) -> usize {
+    model
         .equation
         .iter()
         .position(|e| *e == Some(eq))
-        .map_or(0, |g| g / 3);
-    (it, r, node)
+        .map_or(0, |g| g / 3)
 }
 
 /// `max |x|` (0 for none; a NaN is passed over, as `f64::max` does), in eight partial maxima: the
@@ -264,8 +267,14 @@ pub fn max_abs(xs: &[f64]) -> f64 {
 /// for short elements far from the base: Watchet with 0.0625 m elements stalled at a relative
 /// residual of 1.05e-6 with the worst node wandering along the line.)
 pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
-    // The largest |x| and |z| in eight partial maxima, four nodes at a time (the same value as
-    // one running maximum, without its chain of dependent comparisons).
+    residual_floor_at(model, largest_translation(u))
+}
+
+/// The largest translational displacement `U = max |x|, |z|` of `u` (3 per node), in eight
+/// partial maxima, four nodes at a time (the same value as one running maximum, without its chain
+/// of dependent comparisons; a maximum is exact, so over parts of the line it is the largest of
+/// theirs).
+pub fn largest_translation(u: &[f64]) -> f64 {
     let mut acc = [0.0f64; 8];
     let nodes = u.chunks_exact(12);
     let rest = nodes.remainder();
@@ -275,9 +284,13 @@ pub fn residual_floor(model: &LineModel, u: &[f64]) -> f64 {
             acc[2 * k + 1] = acc[2 * k + 1].max(c[3 * k + 1].abs());
         }
     }
-    let big = rest
-        .chunks_exact(3)
-        .fold(max_abs(&acc), |m, c| m.max(c[0].abs()).max(c[1].abs()));
+    rest.chunks_exact(3)
+        .fold(max_abs(&acc), |m, c| m.max(c[0].abs()).max(c[1].abs()))
+}
+
+/// [`residual_floor`] for the largest translational displacement `big`
+/// ([`largest_translation`]).
+pub fn residual_floor_at(model: &LineModel, big: f64) -> f64 {
     10.0 * f64::EPSILON
         * model
             .elements

@@ -149,8 +149,12 @@ impl<W: Send + 'static> Drop for Partner<W> {
                 .asked
                 .store(seq << 8 | u64::from(EXIT), Ordering::Release);
             h.thread().unpark();
-            // A job that panicked has already said so on the thread's own output.
-            let _ = h.join();
+            // Not joined while this thread panics: the partner may be waiting for it at a
+            // meeting (`Seat`), which it leaves, panicking, once this side's seat is gone.
+            if !std::thread::panicking() {
+                // A job that panicked has already said so on the thread's own output.
+                let _ = h.join();
+            }
         }
     }
 }

@@ -212,6 +212,50 @@ impl LinearSolver {
         }
     }
 
+    /// One side of the factorisation by two threads ([`BandLdlt::factor_side`]).
+    ///
+    /// # Panics
+    /// For faer's solver (only a band factorised from both ends has sides).
+    pub fn factor_side(
+        &mut self,
+        a: &SparseSym,
+        side: usize,
+        seat: &mut crate::partner::Seat,
+    ) -> Result<(), SolveError> {
+        match self {
+            Self::Band(b) => b.factor_side(a, side, seat),
+            Self::Sparse(_) => panic!("only a band factorised from both ends has sides"),
+        }
+    }
+
+    /// One side of the solve by two threads ([`BandLdlt::solve_side`]).
+    ///
+    /// # Panics
+    /// For faer's solver.
+    pub fn solve_side(&self, side: usize, seat: &mut crate::partner::Seat, x: &mut [f64]) {
+        match self {
+            Self::Band(b) => b.solve_side(side, seat, x),
+            Self::Sparse(_) => panic!("only a band factorised from both ends has sides"),
+        }
+    }
+
+    /// The first of the band's five middle equations when it is factorised from both ends
+    /// ([`BandLdlt::twist`]).
+    pub fn twist(&self) -> Option<usize> {
+        match self {
+            Self::Band(b) => b.twist(),
+            Self::Sparse(_) => None,
+        }
+    }
+
+    /// Moves the band's middle five to `m..m+5` ([`BandLdlt::set_twist`]); returns whether it did.
+    pub fn set_twist(&mut self, m: usize) -> bool {
+        match self {
+            Self::Band(b) => b.set_twist(m),
+            Self::Sparse(_) => false,
+        }
+    }
+
     /// Solves `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         match self {
@@ -314,6 +358,25 @@ impl BandLdlt {
             middle: Box::new([0.0; 25]),
             partner: split::Slot::default(),
         }
+    }
+
+    /// The first of the five middle equations `m..m+5` when the band is factorised from both ends
+    /// ([`factor_twisted5`]); `None` when it is factorised top-down.
+    pub fn twist(&self) -> Option<usize> {
+        self.twist
+    }
+
+    /// Moves the middle five of a band factorised from both ends to `m..m+5` (at least five
+    /// equations above them and five below): the ends then meet there. Another `m` is the same
+    /// factorisation in another order, so its values agree to rounding, not to the bit. Returns
+    /// whether it moved (`false`: a band factorised top-down, or `m` out of range).
+    pub fn set_twist(&mut self, m: usize) -> bool {
+        let n = self.first.len();
+        let fits = self.twist.is_some() && m >= 5 && m + 10 <= n;
+        if fits {
+            self.twist = Some(m);
+        }
+        fits
     }
 
     /// The numeric factorisation of `a` (the pattern given to [`BandLdlt::new`]).

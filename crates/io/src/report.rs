@@ -195,6 +195,7 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         })).collect::<Vec<_>>(),
         "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
+        "stepping_threads": r.stepping_threads,
         "envelope_start": r.spec.envelope_start,
         "envelope_steps": e.samples,
         "max_moment_range": num(mr),

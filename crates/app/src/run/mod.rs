@@ -26,7 +26,7 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use catena_fe::assembly::LineResults;
-use catena_fe::dynamics::{self, DynWorkspace, DynamicModel, StepInfo};
+use catena_fe::dynamics::{self, DynWorkspace, DynamicModel, Pair, StepInfo};
 
 use crate::error::AppError;
 use crate::run::checkpoint::{Checkpoint, VERSION};
@@ -71,6 +71,8 @@ pub struct DynamicRun {
     pub cut_log: Vec<CutEvent>,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
+    /// The threads that stepped the line: 2 when a [`Pair`] did ([`RunOptions::threads`]), else 1.
+    pub stepping_threads: usize,
     /// Why the run ended before its duration, if it did.
     pub stop: Option<Stop>,
     /// What the last converged step leaves for a run that continues from rest (a storm sequence).
@@ -141,13 +143,15 @@ pub struct RunOptions {
     /// histories, friction anchors) instead of the statics' state: a storm sequence's next storm.
     /// The carry must be of this scene's Model (the same line, mesh and seabed law).
     pub start: Option<dynamics::Carry>,
-    /// The threads this run may keep busy: 1 counts the fatigue damage on the stepping thread, 2
-    /// or more on a thread of its own ([`crate::run::observers::fatigue`]); `None` takes
-    /// [`default_threads`]. A study running `jobs` runs side by side gives each
+    /// The threads this run may keep busy. From 2 beside the threads its observers keep busy
+    /// ([`Observer::busy_threads`]: the HDF5 writer's), the line is stepped on two threads where
+    /// the scene allows it ([`dynamics::Pair`]; not yet with waves, nor in a pipe-lay run); the
+    /// fatigue damage is counted on a thread of its own ([`crate::run::observers::fatigue`])
+    /// where one is left over, else on the stepping thread. `None` takes [`default_threads`]. A
+    /// study running `jobs` runs side by side gives each
     /// [`crate::studies::schedule::threads_per_run`], so that its runs do not oversubscribe the
     /// cores. The results are the same to the bit whatever the number (only where the work is
-    /// done changes). The HDF5 writer and the plots of `catena run`, which wait on the disk, have
-    /// threads of their own whatever this says.
+    /// done changes). The plots of `catena run` are drawn on threads of their own.
     pub threads: Option<usize>,
 }
 
@@ -248,23 +252,37 @@ pub fn run(
             None => dynamics::initial_state(&dm, &statics.u, &mut ws),
         },
     };
-    let mut outputs = Outputs::build(&Setup {
-        spec: &spec,
-        model: &dm,
-        threads: opts.threads.unwrap_or_else(default_threads).max(1),
-    });
+    let threads = opts.threads.unwrap_or_else(default_threads).max(1);
     let mut res = LineResults::new(n);
     let mut first_step = 1;
     let restarted = opts.restart.is_some();
     if let Some(cp) = &opts.restart {
         restore(cp, &opts, &statics, (&dm, &spec), (&mut state, &mut ws))?;
-        restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
         first_step = cp.step + 1;
         // The results of the restored State: the forces at it are re-evaluated (the workspace of a
         // restored run holds no evaluation yet); nothing is committed.
         dynamics::refresh(&dm, &state, &mut ws);
     }
     dynamics::results(&dm, &state, &ws, &mut res);
+    // Two threads step the line where the run may keep two busy beside the threads its observers
+    // keep busy (the HDF5 writer's) and the scene allows it ([`Pair`]); the fatigue counting then
+    // keeps a thread of its own only from three.
+    let others: usize = extra.iter().map(|o| o.busy_threads()).sum();
+    let mut pair = match threads >= 2 + others {
+        false => None,
+        true => Pair::start(&dm, &state, &mut ws).map_err(|e| AppError::Run {
+            file: statics.scene.file.clone(),
+            message: format!("could not start the run's second thread: {e}"),
+        })?,
+    };
+    let mut outputs = Outputs::build(&Setup {
+        spec: &spec,
+        model: &dm,
+        threads: threads - usize::from(pair.is_some()),
+    });
+    if let Some(cp) = &opts.restart {
+        restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
+    }
     let ctx = RunContext {
         statics: &statics,
         model: &dm,
@@ -284,6 +302,7 @@ pub fn run(
         ctx: &ctx,
         state: &mut state,
         ws: &mut ws,
+        pair: pair.as_mut(),
         res: &mut res,
         outputs: &mut outputs,
         tally: Tally {
@@ -293,6 +312,10 @@ pub fn run(
     };
     let stop = stepper.steps(first_step, extra, &opts);
     let tally = std::mem::take(&mut stepper.tally);
+    let stepping_threads = 1 + usize::from(pair.is_some());
+    if let Some(p) = pair {
+        p.stop(&dm, &mut ws);
+    }
     let stop = stop?;
     each(&mut outputs, extra, |o| o.finish(&ctx, stop.as_ref()))?;
     let envelopes = outputs
@@ -317,6 +340,7 @@ pub fn run(
         retries: tally.retries,
         cut_log: tally.cut_log,
         wall_seconds: t0.elapsed().as_secs_f64(),
+        stepping_threads,
         stop,
         carry: state.carry(),
     })
@@ -413,6 +437,8 @@ struct Stepper<'a, 'c> {
     ctx: &'c RunContext<'c>,
     state: &'a mut dynamics::DynState,
     ws: &'a mut DynWorkspace,
+    /// The second thread stepping the line's second part, when the run has one.
+    pair: Option<&'a mut Pair>,
     res: &'a mut LineResults,
     outputs: &'a mut Outputs,
     tally: Tally,
@@ -430,7 +456,11 @@ impl Stepper<'_, '_> {
         let (dm, spec) = (self.ctx.model, self.ctx.spec);
         let n_steps = (spec.duration / spec.dt).round() as u64;
         for k in first..=n_steps {
-            let info = match dynamics::advance(dm, self.state, self.ws, spec.dt) {
+            let step = match self.pair.as_deref_mut() {
+                Some(p) => p.advance(dm, self.state, self.ws, spec.dt),
+                None => dynamics::advance(dm, self.state, self.ws, spec.dt),
+            };
+            let info = match step {
                 Ok(info) => info,
                 Err(e) => return Ok(Some(Stop::Failed(e))),
             };
@@ -501,7 +531,10 @@ impl Stepper<'_, '_> {
             scene_hash: crate::scene::text_hash(&scene.text),
             step: k,
             state: self.state.clone(),
-            solver: self.ws.solver_memory(),
+            solver: match self.pair.as_deref_mut() {
+                Some(p) => p.solver_memory(self.ws),
+                None => self.ws.solver_memory(),
+            },
             observers,
         };
         for o in extra.iter_mut() {

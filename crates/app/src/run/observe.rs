@@ -158,6 +158,14 @@ pub trait Observer {
         let _ = cp;
         Ok(())
     }
+
+    /// The threads of its own that it keeps busy while the run steps (the HDF5 writer's: 1). The
+    /// run counts them against [`crate::run::RunOptions::threads`] before it steps the line on
+    /// two threads: two threads in lockstep that share their cores with a third wait for each
+    /// other whenever it runs.
+    fn busy_threads(&self) -> usize {
+        0
+    }
 }
 
 /// Non-finite values (the ±∞ of empty extremes) as JSON nulls and back.

@@ -10,6 +10,7 @@ use crate::wave_sampling::KinematicsGrid;
 use crate::waves::{Kinematics, WaveScratch};
 use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 
+use super::pair::{Lane, Scope};
 use super::*;
 
 /// Scratch for the dynamics (never saved).
@@ -66,6 +67,25 @@ pub struct DynWorkspace {
     pub(super) g_all: Vec<f64>,
     /// The residual's reference norm ([`crate::statics::residual_reference`]) of the Model.
     pub(super) reference: f64,
+    /// Where the line is cut in two parts ([`Split`]), when its band is factorised from both ends.
+    pub(super) split: Option<Split>,
+    /// What this workspace's thread steps: the whole line, or one of the two parts.
+    pub(super) scope: Scope,
+    /// Where it meets the thread that steps the other part, when there is one ([`Pair`]).
+    pub(super) lane: Option<Lane>,
+}
+
+/// The line cut in two parts where the band's two ends meet ([`Assembler::split_at_node`]): the
+/// first owns the nodes `0..=k`, the second the others. The residual's squared norm is the sum of
+/// the two parts' in that order, whether one thread steps the line or two (issue 48), so that
+/// both give the same bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Split {
+    /// The first part's last node.
+    pub k: usize,
+    /// The first of the free runs that belong to the second part (the runs are cut at its first
+    /// dof).
+    pub runs: usize,
 }
 
 impl DynWorkspace {
@@ -78,20 +98,36 @@ impl DynWorkspace {
             .map_or(SeabedHistory::Linear(Default::default()), |s| {
                 s.seabed.untouched()
             });
+        let mut asm = Assembler::new(line)?;
+        // The line's two parts (issue 48): the runs are cut where a part's own nodes end and
+        // where its neighbour's first node (which it reads) ends.
+        let k = asm.split_at_node(line);
+        let cuts = k.map_or([usize::MAX; 3], |k| [3 * k, 3 * (k + 1), 3 * (k + 2)]);
         let mut free_runs: Vec<(usize, usize, usize)> = Vec::new();
         for (g, e) in line.equation.iter().enumerate() {
             match (e, free_runs.last_mut()) {
-                (Some(e), Some((g0, e0, len))) if *g0 + *len == g && *e0 + *len == *e => *len += 1,
+                (Some(e), Some((g0, e0, len)))
+                    if *g0 + *len == g && *e0 + *len == *e && !cuts.contains(&g) =>
+                {
+                    *len += 1
+                }
                 (Some(e), _) => free_runs.push((g, *e, 1)),
                 (None, _) => {}
             }
         }
+        let split = k.map(|k| Split {
+            k,
+            runs: free_runs.partition_point(|r| r.0 < 3 * (k + 1)),
+        });
         Ok(Self {
+            scope: Scope::whole(line, free_runs.len()),
+            lane: None,
+            split,
             reference: crate::statics::residual_reference(line),
             free_runs,
             constraints: boundary::constraints(line),
             g_all: vec![0.0; 3 * n],
-            asm: Assembler::new(line)?,
+            asm,
             mass: vec![[0.0; 4]; n],
             structural_mass: structural_mass(line),
             f: vec![0.0; 3 * n],

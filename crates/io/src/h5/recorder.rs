@@ -555,6 +555,10 @@ impl Observer for Recorder {
         "hdf5"
     }
 
+    fn busy_threads(&self) -> usize {
+        usize::from(self.writer.is_some())
+    }
+
     fn start(
         &mut self,
         ctx: &RunContext<'_>,

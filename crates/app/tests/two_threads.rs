@@ -1,0 +1,231 @@
+//! Two threads step a line as one does, to the bit (issue 48): from the same statics, each case is
+//! stepped by [`dynamics::advance`] on one thread and by a [`Pair`] on two, and after every step
+//! the two States (displacements, velocities, accelerations, forces, seabed histories, friction
+//! anchors), the step's counts (iterations, retries, cuts) and the nodal results are compared
+//! bit for bit. The cases cover the effects a pair steps: the heave benchmark (linear seabed,
+//! drag, harmonic heave), the Randolph–Quiggin seabed through lift-off with step cuts, axial
+//! friction, soil zones, attached bodies, a current, and lazy waves' sections with a flexjoint.
+
+use std::path::Path;
+
+use catena::run;
+use catena::statics;
+use catena_fe::assembly::LineResults;
+use catena_fe::dynamics::{self, DynState, DynWorkspace, Pair};
+
+/// The bits of a list of numbers.
+fn bits(x: &[f64]) -> Vec<u64> {
+    x.iter().map(|v| v.to_bits()).collect()
+}
+
+fn same_state(case: &str, k: usize, one: &DynState, two: &DynState) {
+    for (what, a, b) in [
+        ("u", &one.u, &two.u),
+        ("v", &one.v, &two.v),
+        ("a", &one.a, &two.a),
+        ("f_prev", &one.f_prev, &two.f_prev),
+        (
+            "friction_anchor",
+            &one.friction_anchor,
+            &two.friction_anchor,
+        ),
+    ] {
+        assert_eq!(bits(a), bits(b), "{case}: step {k}: {what} differs");
+    }
+    assert_eq!(
+        one.history, two.history,
+        "{case}: step {k}: histories differ"
+    );
+    assert_eq!(
+        one.t.to_bits(),
+        two.t.to_bits(),
+        "{case}: step {k}: t differs"
+    );
+}
+
+fn same_results(case: &str, k: usize, one: &LineResults, two: &LineResults) {
+    for (what, a, b) in [
+        ("x", &one.x, &two.x),
+        ("z", &one.z, &two.z),
+        ("tension", &one.tension, &two.tension),
+        ("moment", &one.moment, &two.moment),
+        ("penetration", &one.penetration, &two.penetration),
+        ("seabed_force", &one.seabed_force, &two.seabed_force),
+    ] {
+        assert_eq!(bits(a), bits(b), "{case}: step {k}: results' {what} differ");
+    }
+    assert_eq!(one.mode, two.mode, "{case}: step {k}: contact modes differ");
+}
+
+/// Steps `case` `steps` times on one thread and on two; returns the step cuts and retries taken.
+fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../cases")
+        .join(case);
+    let st = statics::solve(statics::read_scene(&path).expect("case")).expect("statics");
+    let (spec, dm) = run::prepare(&st).expect("dynamic model");
+    let n = dm.line.nodes();
+    let mut ws1 = DynWorkspace::new(&dm.line).expect("workspace");
+    let mut ws2 = DynWorkspace::new(&dm.line).expect("workspace");
+    let mut one = dynamics::initial_state(&dm, &st.u, &mut ws1);
+    let mut two = dynamics::initial_state(&dm, &st.u, &mut ws2);
+    let mut pair = Pair::start(&dm, &two, &mut ws2)
+        .expect("a thread")
+        .unwrap_or_else(|| panic!("{case}: a line a pair steps"));
+    let (mut r1, mut r2) = (LineResults::new(n), LineResults::new(n));
+    let (mut cuts, mut retries) = (0, 0);
+    for k in 1..=steps {
+        let i1 = dynamics::advance(&dm, &mut one, &mut ws1, spec.dt);
+        let i2 = pair.advance(&dm, &mut two, &mut ws2, spec.dt);
+        assert_eq!(i1, i2, "{case}: step {k}: the steps' outcomes differ");
+        let info = i1.unwrap_or_else(|e| panic!("{case}: step {k}: {e}"));
+        (cuts, retries) = (cuts + info.cuts, retries + info.retries);
+        // As a run does: the time is the step count times Δt.
+        one.t = k as f64 * spec.dt;
+        two.t = one.t;
+        same_state(case, k, &one, &two);
+        dynamics::results(&dm, &one, &ws1, &mut r1);
+        dynamics::results(&dm, &two, &ws2, &mut r2);
+        same_results(case, k, &r1, &r2);
+    }
+    let m1 = ws1.solver_memory().expect("a factorisation");
+    let m2 = pair.solver_memory(&mut ws2).expect("a factorisation");
+    assert_eq!(
+        bits(&m1.values),
+        bits(&m2.values),
+        "{case}: solver memories differ"
+    );
+    assert_eq!(m1.dt.to_bits(), m2.dt.to_bits());
+    pair.stop(&dm, &mut ws2);
+    println!("{case}: {steps} steps, {cuts} cuts, {retries} retries: the same bits");
+    (cuts, retries)
+}
+
+#[test]
+fn two_threads_step_the_heave_benchmark_as_one_to_the_bit() {
+    one_and_two("benchmarks/scr-heave.toml", 400);
+}
+
+/// Sticky soil: the Randolph–Quiggin seabed at lift-off, where steps are cut and retried (the
+/// decisions must be the same on both threads).
+#[test]
+fn two_threads_step_through_cuts_as_one_to_the_bit() {
+    let (cuts, retries) = one_and_two("hard/sticky-soil.toml", 300);
+    assert!(cuts + retries > 0, "the case no longer cuts a step");
+}
+
+#[test]
+fn two_threads_step_friction_zones_and_attachments_as_one_to_the_bit() {
+    for case in [
+        "hard/friction-stick-slip.toml",
+        "hard/zone-boundary.toml",
+        "benchmarks/scr-attachments.toml",
+        "benchmarks/scr-current.toml",
+        "lazy-wave/heave.toml",
+    ] {
+        one_and_two(case, 150);
+    }
+}
+
+/// A lazy wave heaved hard (CableDyn's comparison case): the convergence test's rounding floor
+/// grows with the largest displacement anywhere on the line, which each thread finds on its own
+/// part (a floor from a thread's stale copy of the other part made the threads take different
+/// iterations here).
+#[test]
+fn two_threads_step_a_heaved_lazy_wave_as_one_to_the_bit() {
+    one_and_two("lazy-wave/cabledyn-heave.toml", 600);
+}
+
+/// A run on two threads (`RunOptions::threads`) is the run on one, to the bit: the heave
+/// benchmark's envelopes, gauges, top history and Newton counts. A run stopped at a checkpoint on
+/// two threads and restarted, on two threads or on one, ends as the uninterrupted run (the
+/// checkpoint's solver memory is the whole tangent's).
+#[test]
+fn a_run_on_two_threads_is_the_run_on_one_and_restarts_bit_for_bit() {
+    use catena::checkpoint::Checkpoint;
+    use catena::observe::Checkpointer;
+    use catena::run::RunOptions;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/benchmarks/scr-heave.toml");
+    let st = statics::solve(statics::read_scene(&path).expect("case")).expect("statics");
+    let on = |threads| {
+        let opts = RunOptions::with_threads(Some(threads));
+        run::run(st.clone(), &mut [], opts).expect("runs")
+    };
+    let (one, two) = (on(1), on(2));
+    assert!(one.completed() && two.completed());
+    assert_eq!(one.envelopes, two.envelopes, "envelopes");
+    assert_eq!(one.gauges, two.gauges, "gauges");
+    assert_eq!(one.top, two.top, "top history");
+    assert_eq!(
+        (one.iterations, one.cuts, one.retries),
+        (two.iterations, two.cuts, two.retries)
+    );
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("two-threads-restart");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut cut = Checkpointer::new(&dir.join("cut.json"), 250);
+    let opts = RunOptions {
+        stop_after: Some(1000),
+        ..RunOptions::with_threads(Some(2))
+    };
+    run::run(st.clone(), &mut [&mut cut], opts).expect("runs");
+    let cp = Checkpoint::read(&dir.join("cut.json")).expect("checkpoint");
+    assert_eq!(cp.step, 1000);
+    for threads in [2, 1] {
+        let opts = RunOptions {
+            restart: Some(cp.clone()),
+            restart_file: "cut.json".into(),
+            ..RunOptions::with_threads(Some(threads))
+        };
+        let after = run::run(st.clone(), &mut [], opts).expect("runs");
+        assert_eq!(after.steps, one.steps);
+        assert_eq!(one.envelopes, after.envelopes, "restarted on {threads}");
+        assert_eq!(one.top, after.top, "restarted on {threads}");
+    }
+}
+
+/// An observer that says it keeps a thread busy (as the HDF5 writer does).
+struct Busy;
+
+impl catena::observe::Observer for Busy {
+    fn name(&self) -> &'static str {
+        "busy"
+    }
+
+    fn step(
+        &mut self,
+        _: &catena::observe::RunContext<'_>,
+        _: &catena::observe::StepView<'_>,
+    ) -> Result<catena::observe::Control, catena::AppError> {
+        Ok(catena::observe::Control::Continue)
+    }
+
+    fn busy_threads(&self) -> usize {
+        1
+    }
+}
+
+/// A run steps the line on two threads where its threads leave two beside its observers' own
+/// (the HDF5 writer's), and the scene has no waves; else on one.
+#[test]
+fn a_run_steps_on_two_threads_only_where_it_has_them() {
+    use catena::run::RunOptions;
+    let heave = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/benchmarks/scr-heave.toml");
+    let mut st = statics::solve(statics::read_scene(&heave).expect("case")).expect("statics");
+    st.scene.dynamic.as_mut().expect("dynamic").duration = 1.0;
+    let stepping = |threads, extra: &mut [&mut dyn catena::observe::Observer]| {
+        let opts = RunOptions::with_threads(Some(threads));
+        run::run(st.clone(), extra, opts)
+            .expect("runs")
+            .stepping_threads
+    };
+    assert_eq!(stepping(1, &mut []), 1);
+    assert_eq!(stepping(2, &mut []), 2);
+    assert_eq!(stepping(2, &mut [&mut Busy]), 1);
+    assert_eq!(stepping(3, &mut [&mut Busy]), 2);
+    let waves = heave.with_file_name("scr-regular-wave.toml");
+    let mut st = statics::solve(statics::read_scene(&waves).expect("case")).expect("statics");
+    st.scene.dynamic.as_mut().expect("dynamic").duration = 1.0;
+    let opts = RunOptions::with_threads(Some(2));
+    let r = run::run(st, &mut [], opts).expect("runs");
+    assert_eq!(r.stepping_threads, 1, "waves are not split yet");
+}

@@ -1,0 +1,411 @@
+//! Two threads stepping one line (issue 48): each runs the same Newton loop ([`advance`]) on its
+//! part of the line, and the two meet where the parts touch.
+//!
+//! The line is cut where the band's two ends meet ([`Assembler::split_at_node`]): the first part
+//! owns the nodes `0..=k` and the equations `0..p` (the band's top end and middle), the second the
+//! nodes `k+1..` and the equations `p..` (its bottom end). Each thread
+//!
+//! - predicts, and takes the Newmark relations, at its own nodes and at the other part's node
+//!   next to them (the *halo*: the element across the cut is computed by both parts);
+//! - assembles its part's forces and tangent columns ([`Part`]), its residual and lumped mass at
+//!   its own nodes;
+//! - factorises and solves its side of the band ([`Assembler::factor_tangent_side`]);
+//! - commits its own nodes' histories.
+//!
+//! They meet four times in an iteration at most: for the residual's squared norm (two partial
+//! sums, added in the same order as on one thread, [`Split`]), twice in a factorisation, twice in a
+//! solve, and once after it for the largest correction and the halo's corrections. Every decision
+//! (convergence, backtracking, refactorising, retries, cuts) is taken from the same numbers on
+//! both, so both take it; and every number is computed by the same operations in the same order
+//! as on one thread: the State after a step is the same to the bit whether one thread steps the
+//! line or two (`two_threads_step_as_one_to_the_bit`). The second thread's part of the State is
+//! handed over after each step ([`Pair::advance`]), so that the results and the observers read
+//! one whole State.
+//!
+//! Not split yet: the wave kinematics (a scene with waves steps on one thread).
+
+use std::ops::Range;
+
+use crate::assembly::Part;
+use crate::newton::max_abs;
+use crate::partner::{seats, Partner, Seat};
+
+use super::workspace::Split;
+use super::*;
+
+/// What one thread steps: the whole line, or one of its two parts ([`Split`]) and the other
+/// part's node next to it.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Scope {
+    /// The elements it computes and the nodes it owns.
+    pub part: Part,
+    /// The free runs of its own nodes (the residual's equations it takes).
+    pub own_runs: Range<usize>,
+    /// The free runs of its own nodes and of the halo (where it updates the iterate).
+    pub reach_runs: Range<usize>,
+    /// The dofs of its own nodes and of the halo (where it predicts).
+    pub reach_dofs: Range<usize>,
+    /// Its own equations.
+    pub own_eqs: Range<usize>,
+}
+
+impl Scope {
+    /// The whole line, `runs` free runs.
+    pub fn whole(line: &LineModel, runs: usize) -> Self {
+        Self {
+            part: Part::whole(line),
+            own_runs: 0..runs,
+            reach_runs: 0..runs,
+            reach_dofs: 0..3 * line.nodes(),
+            own_eqs: 0..line.n_eq,
+        }
+    }
+
+    /// Side `side` (0: the first part) of the line cut at `split`.
+    fn side(line: &LineModel, split: Split, runs: &[(usize, usize, usize)], side: usize) -> Self {
+        let (k, n) = (split.k, line.nodes());
+        let [first, second] = Part::halves(line, k);
+        // The second part's first run starts at its first equation (the runs are cut there).
+        let p = runs[split.runs].1;
+        let below = |g: usize| runs.partition_point(|r| r.0 < g);
+        if side == 0 {
+            Self {
+                part: first,
+                own_runs: 0..split.runs,
+                reach_runs: 0..below(3 * (k + 2)),
+                reach_dofs: 0..3 * (k + 2),
+                own_eqs: 0..p,
+            }
+        } else {
+            Self {
+                part: second,
+                own_runs: split.runs..runs.len(),
+                reach_runs: below(3 * k)..runs.len(),
+                reach_dofs: 3 * k..3 * n,
+                own_eqs: p..line.n_eq,
+            }
+        }
+    }
+
+    /// Its own nodes, and their dofs.
+    pub fn own(&self) -> (Range<usize>, Range<usize>) {
+        let nodes = self.part.nodes.clone();
+        let dofs = 3 * nodes.start..3 * nodes.end;
+        (nodes, dofs)
+    }
+}
+
+/// Where a thread that steps one part meets the other.
+#[derive(Debug)]
+pub(super) struct Lane {
+    /// 0: the first part; 1: the second.
+    side: usize,
+    seat: Seat,
+    /// The equations whose corrections it sends after a solve (side 1: those of the first
+    /// part's halo node, `k + 1`), and those it receives (side 0: the same).
+    send: Range<usize>,
+    receive: Range<usize>,
+}
+
+impl DynWorkspace {
+    /// Makes this workspace step side `side` of the line, meeting the other at `seat`.
+    fn enter(&mut self, line: &LineModel, split: Split, side: usize, seat: Seat) {
+        self.scope = Scope::side(line, split, &self.free_runs, side);
+        let p = self.free_runs[split.runs].1;
+        let halo = (3 * (split.k + 1)..3 * (split.k + 2))
+            .filter(|&g| line.equation[g].is_some())
+            .count();
+        let (send, receive) = if side == 0 {
+            (p..p, p..p + halo)
+        } else {
+            (p..p + halo, p..p)
+        };
+        self.lane = Some(Lane {
+            side,
+            seat,
+            send,
+            receive,
+        });
+    }
+
+    /// Makes this workspace step the whole line again.
+    fn leave(&mut self, line: &LineModel) {
+        self.scope = Scope::whole(line, self.free_runs.len());
+        self.lane = None;
+    }
+
+    /// The squared norm of the residual's free equations (`g_all` on the free runs): eight
+    /// interleaved partial sums per run ([`crate::fastmath::lane_dot`]: one running sum is a
+    /// chain of dependent additions), each part's runs summed, then the two parts ([`Split`]),
+    /// on one thread or two.
+    pub(super) fn residual_sq(&mut self) -> f64 {
+        let g_all = &self.g_all;
+        let sum = |runs: &[(usize, usize, usize)]| -> f64 {
+            runs.iter()
+                .map(|&(g0, _, len)| {
+                    let g = &g_all[g0..g0 + len];
+                    crate::fastmath::lane_dot(g, g)
+                })
+                .sum()
+        };
+        match (&mut self.lane, self.split) {
+            (None, None) => sum(&self.free_runs),
+            (None, Some(s)) => sum(&self.free_runs[..s.runs]) + sum(&self.free_runs[s.runs..]),
+            (Some(l), _) => {
+                let mine = sum(&self.free_runs[self.scope.own_runs.clone()]);
+                let mut theirs = [0.0];
+                l.seat.exchange(&[mine], &mut theirs);
+                match l.side {
+                    0 => mine + theirs[0],
+                    _ => theirs[0] + mine,
+                }
+            }
+        }
+    }
+
+    /// The largest translational displacement of `u` ([`crate::newton::largest_translation`]),
+    /// over both parts on two threads.
+    pub(super) fn largest_translation(&mut self, u: &[f64]) -> f64 {
+        let (_, dofs) = self.scope.own();
+        let mine = crate::newton::largest_translation(&u[dofs]);
+        let Some(l) = &mut self.lane else {
+            return mine;
+        };
+        let mut theirs = [0.0];
+        l.seat.exchange(&[mine], &mut theirs);
+        mine.max(theirs[0])
+    }
+
+    /// After a step on two threads, each side checks that the other took the same one (its
+    /// outcome, counts and time); a side that took another step (a bug) panics rather than
+    /// waiting for ever at a meeting the other does not come to. Seven numbers: no other meeting
+    /// has that many, so a side at another meeting panics too.
+    fn same_step(&mut self, outcome: &Result<StepInfo, StepError>, t: f64) {
+        let Some(l) = &mut self.lane else {
+            return;
+        };
+        let info = outcome.as_ref().ok();
+        let mine = [
+            f64::from(u8::from(outcome.is_ok())),
+            info.map_or(0.0, |i| i.iterations as f64),
+            info.map_or(0.0, |i| f64::from(i.cuts)),
+            info.map_or(0.0, |i| f64::from(i.retries)),
+            info.map_or(0.0, |i| i.substeps as f64),
+            t,
+            1.0,
+        ];
+        let mut theirs = [0.0; 7];
+        l.seat.exchange(&mine, &mut theirs);
+        assert_eq!(
+            mine.map(f64::to_bits),
+            theirs.map(f64::to_bits),
+            "the two threads stepping the line took different steps"
+        );
+    }
+
+    /// Factorises the tangent assembled last (this thread's side of it on two).
+    pub(super) fn factor_tangent(&mut self) -> Result<(), SolveError> {
+        match &mut self.lane {
+            None => self.asm.factor_tangent(),
+            Some(l) => self.asm.factor_tangent_side(l.side, &mut l.seat),
+        }
+    }
+
+    /// The Newton correction `dq = J⁻¹ g` on this thread's equations (on two, also the halo's);
+    /// returns the largest `|dq|` over all the equations.
+    pub(super) fn correction(&mut self) -> f64 {
+        let own = self.scope.own_eqs.clone();
+        self.dq[own.clone()].copy_from_slice(&self.g[own.clone()]);
+        let Some(l) = &mut self.lane else {
+            self.asm.solve_tangent(&mut self.dq);
+            return max_abs(&self.dq);
+        };
+        self.asm
+            .solve_tangent_side(l.side, &mut l.seat, &mut self.dq);
+        // The largest over the two parts is the largest over the whole (a maximum is exact).
+        let mine = max_abs(&self.dq[own]);
+        let (mut sent, mut got) = ([0.0; 4], [0.0; 4]);
+        let (s, r) = (l.send.len(), l.receive.len());
+        sent[0] = mine;
+        sent[1..=s].copy_from_slice(&self.dq[l.send.clone()]);
+        l.seat.exchange(&sent[..=s], &mut got[..=r]);
+        self.dq[l.receive.clone()].copy_from_slice(&got[1..=r]);
+        mine.max(got[0])
+    }
+
+    /// `(iteration, residual)` of the last accepted iterate and the node of the largest entry of
+    /// its residual on the free equations (the first of equal ones), over both parts on two
+    /// threads.
+    pub(super) fn worst_node(
+        &mut self,
+        model: &LineModel,
+        (it, r): (usize, f64),
+    ) -> (usize, f64, usize) {
+        let (big, mut eq) = crate::newton::largest_entry(&self.g, self.scope.own_eqs.clone());
+        if let Some(l) = &mut self.lane {
+            // An equation number is exact in an f64.
+            let mut theirs = [0.0; 2];
+            l.seat.exchange(&[big, eq as f64], &mut theirs);
+            let (first, second) = match l.side {
+                0 => ((big, eq), (theirs[0], theirs[1] as usize)),
+                _ => ((theirs[0], theirs[1] as usize), (big, eq)),
+            };
+            eq = if second.0 > first.0 {
+                second.1
+            } else {
+                first.1
+            };
+        }
+        let node = crate::newton::node_of_equation(model, eq);
+        (it, r, node)
+    }
+}
+
+/// The second thread's side of a [`Pair`]: its copy of the Model and its own State and Workspace.
+struct Side {
+    dm: DynamicModel,
+    state: DynState,
+    ws: DynWorkspace,
+    dt: f64,
+    outcome: Result<StepInfo, StepError>,
+}
+
+/// The job that advances the second thread's side by its `dt`.
+const ADVANCE: u8 = 1;
+
+fn serve(w: &mut Side, code: u8) {
+    if code == ADVANCE {
+        let step = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            advance(&w.dm, &mut w.state, &mut w.ws, w.dt)
+        }));
+        match step {
+            Ok(outcome) => {
+                w.ws.same_step(&outcome, w.state.t);
+                w.outcome = outcome;
+            }
+            Err(panic) => {
+                // Its seat goes, so that the other side does not wait for it for ever.
+                w.ws.lane = None;
+                std::panic::resume_unwind(panic)
+            }
+        }
+    }
+}
+
+/// A run's second thread stepping the second part of the line (see the module docs): made with
+/// [`Pair::start`], it advances with [`Pair::advance`] instead of [`advance`].
+pub struct Pair {
+    partner: Partner<Side>,
+    split: Split,
+}
+
+impl std::fmt::Debug for Pair {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Pair").field("k", &self.split.k).finish()
+    }
+}
+
+impl Pair {
+    /// Starts the second thread from `state`, and makes `ws` (the calling thread's) step the first
+    /// part. `None` when the line is not cut in parts (a band factorised top-down: lines of fewer
+    /// than [`crate::sparse::TWIST_MIN`] equations) or the scene has waves (not split yet). The
+    /// Model must not change while the pair steps ([`Pair::stop`] first).
+    pub fn start(
+        dm: &DynamicModel,
+        state: &DynState,
+        ws: &mut DynWorkspace,
+    ) -> std::io::Result<Option<Self>> {
+        let Some(split) = ws.split else {
+            return Ok(None);
+        };
+        if dm.environment.waves.is_some() || ws.lane.is_some() {
+            return Ok(None);
+        }
+        let mut theirs = DynWorkspace::new(&dm.line).map_err(std::io::Error::other)?;
+        // The factorisation the first iterations of the next step reuse, to the bit.
+        if let Some(m) = ws.solver_memory() {
+            theirs
+                .restore_solver_memory(&m)
+                .map_err(std::io::Error::other)?;
+        }
+        // The largest meeting: a factorisation's outcome and five band columns (31 numbers).
+        let (mine, other) = seats(32);
+        ws.enter(&dm.line, split, 0, mine);
+        theirs.enter(&dm.line, split, 1, other);
+        let side = Side {
+            dm: dm.clone(),
+            state: state.clone(),
+            ws: theirs,
+            dt: 0.0,
+            outcome: Ok(StepInfo::default()),
+        };
+        match Partner::start(side, serve) {
+            Ok(partner) => Ok(Some(Self { partner, split })),
+            Err(e) => {
+                ws.leave(&dm.line);
+                Err(e)
+            }
+        }
+    }
+
+    /// [`advance`] on two threads: the same State and results to the bit. The second part's
+    /// nodes of the State, its lumped mass, seabed forces and element results are handed over to
+    /// `state` and `ws` afterwards, so that [`results`] reads the whole line.
+    pub fn advance(
+        &mut self,
+        dm: &DynamicModel,
+        state: &mut DynState,
+        ws: &mut DynWorkspace,
+        dt: f64,
+    ) -> Result<StepInfo, StepError> {
+        {
+            let mut w = self.partner.work();
+            // The caller may set the time between steps (to the step count times Δt).
+            w.state.t = state.t;
+            w.dt = dt;
+        }
+        self.partner.ask(ADVANCE);
+        let outcome = advance(dm, state, ws, dt);
+        ws.same_step(&outcome, state.t);
+        let w = self.partner.wait();
+        let (k, n) = (self.split.k, dm.line.nodes());
+        let (nodes, dofs) = (k + 1..n, 3 * (k + 1)..3 * n);
+        for (to, from) in [
+            (&mut state.u, &w.state.u),
+            (&mut state.v, &w.state.v),
+            (&mut state.a, &w.state.a),
+            (&mut state.f_prev, &w.state.f_prev),
+        ] {
+            to[dofs.clone()].copy_from_slice(&from[dofs.clone()]);
+        }
+        state.history[nodes.clone()].copy_from_slice(&w.state.history[nodes.clone()]);
+        let per = state.friction_anchor.len() / n;
+        let anchors = per * (k + 1)..per * n;
+        state.friction_anchor[anchors.clone()].copy_from_slice(&w.state.friction_anchor[anchors]);
+        ws.mass[nodes.clone()].copy_from_slice(&w.ws.mass[nodes.clone()]);
+        let force = &mut ws.loads.seabed_force;
+        force[nodes.clone()].copy_from_slice(&w.ws.loads.seabed_force[nodes]);
+        ws.asm
+            .take_element_results(&w.ws.asm, k + 1..dm.line.elements.len());
+        debug_assert_eq!(outcome, w.outcome);
+        outcome
+    }
+
+    /// The solver memory of the pair ([`DynWorkspace::solver_memory`]): the first side's with the
+    /// second side's columns of the tangent factorised last.
+    pub fn solver_memory(&self, ws: &mut DynWorkspace) -> Option<SolverMemory> {
+        let w = self.partner.work();
+        let p = ws.scope.own_eqs.end;
+        ws.asm
+            .take_factored_columns(&w.ws.asm, p..w.ws.scope.own_eqs.end);
+        ws.solver_memory()
+    }
+
+    /// Ends the second thread and makes `ws` step the whole line again (its factorisation, of the
+    /// first side only, is forgotten).
+    pub fn stop(self, dm: &DynamicModel, ws: &mut DynWorkspace) {
+        drop(self.partner);
+        ws.leave(&dm.line);
+        ws.forget_factorisation();
+    }
+}
