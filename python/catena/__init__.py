@@ -78,7 +78,7 @@ def statics(scene) -> Results:
     return Results(_catena.statics(_scene(scene)))
 
 
-def run(scene, progress=None, every: int = 100) -> Results:
+def run(scene, progress=None, every: int = 100, threads: int = 0) -> Results:
     """Statics, then the dynamics of a scene (a :class:`Scene` or a case file's path).
 
     Arrays: the records of ``results.h5``'s ``/dynamic`` (``time`` in s; ``top_x``, ``top_z`` in m;
@@ -89,7 +89,11 @@ def run(scene, progress=None, every: int = 100) -> Results:
     ``[fatigue]`` table ``fatigue/damage_<fibre>`` (over the counted record).
 
     The interpreter lock is released while catena steps, so runs in several threads run in
-    parallel. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
+    parallel. ``threads`` is the number of threads the run may keep busy (0: every core): from two,
+    the line is stepped on two threads where the scene allows it (no waves yet), with the same
+    results to the bit. Runs side by side in several Python threads should share the cores
+    (``threads=1`` each on two cores): two threads stepping one line in lockstep slow down when
+    they share a core with another. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
     times a second, and at the last step; Ctrl-C stops the run and raises ``KeyboardInterrupt``. A
     run that stops early (a step that does not converge) still returns everything up to its last
     converged step: see ``summary["completed"]`` and ``summary["stop_reason"]``.
@@ -98,7 +102,7 @@ def run(scene, progress=None, every: int = 100) -> Results:
     (``lay/time``, ``lay/paid_out``, ``lay/top_tension``, ``lay/kp``, ``lay/as_laid_embedment``, …;
     ``docs/results.md``) and ``summary.json`` with its ``lay``; ``progress`` is not called.
     """
-    return Results(_catena.run(_scene(scene), progress, every))
+    return Results(_catena.run(_scene(scene), progress, every, threads))
 
 
 def fatigue_study(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:

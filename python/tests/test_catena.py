@@ -207,8 +207,9 @@ def test_the_public_names_are_the_api():
 
 
 def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits():
-    """The interpreter is released while catena steps: two runs in two threads take clearly less
-    than twice one run (on two cores), and give the same numbers as one at a time."""
+    """The interpreter is released while catena steps: two runs in two threads, one core each,
+    take clearly less than twice one run (on two cores), and give the same numbers as one at a
+    time, and as one run stepped on two threads."""
     import threading
     import time
 
@@ -216,12 +217,15 @@ def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits():
         pytest.skip("needs two cores")
     scene = catena.Scene.from_file(HEAVE).edited({"dynamic.duration": 150.0})
     t0 = time.perf_counter()
-    alone = catena.run(scene)
+    alone = catena.run(scene, threads=1)
     one = time.perf_counter() - t0
+    paired = catena.run(scene, threads=2)
+    assert paired.summary["stepping_threads"] == 2
+    assert alone.summary["stepping_threads"] == 1
     out = [None, None]
 
     def go(k):
-        out[k] = catena.run(scene, progress=lambda t, d: None, every=50)
+        out[k] = catena.run(scene, progress=lambda t, d: None, every=50, threads=1)
 
     threads = [threading.Thread(target=go, args=(k,)) for k in range(2)]
     t0 = time.perf_counter()
@@ -230,7 +234,7 @@ def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits():
     for t in threads:
         t.join()
     both = time.perf_counter() - t0
-    for r in out:
+    for r in [*out, paired]:
         for name in ["time", "bending_moment", "penetration", "ranges/bending_moment/min"]:
             assert np.array_equal(r[name], alone[name], equal_nan=True), name
     assert both < 1.6 * one, f"two runs in two threads took {both:.2f} s, one run {one:.2f} s"

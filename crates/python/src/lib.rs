@@ -224,14 +224,16 @@ impl Observer for Progress {
 /// A dynamic run (statics first): `{"arrays": …, "summary": json}`. The arrays are the
 /// `results.h5` `/dynamic` series and fields (one row per record), the envelopes (`*_min`,
 /// `*_max`, from `envelope_start`) and each gauge's moment and tension at every step. The
-/// interpreter is released while catena steps.
+/// interpreter is released while catena steps. `threads`: the threads the run may keep busy
+/// ([`RunOptions::threads`]; 0: the machine's cores).
 #[pyfunction]
-#[pyo3(signature = (scene, progress = None, every = 100))]
+#[pyo3(signature = (scene, progress = None, every = 100, threads = 0))]
 fn run<'py>(
     py: Python<'py>,
     scene: &PyScene,
     progress: Option<Py<PyAny>>,
     every: u64,
+    threads: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     if scene.scene.lay.is_some() {
         return run_lay(py, scene);
@@ -247,7 +249,8 @@ fn run<'py>(
     let r = py
         .detach(|| {
             let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
-            catena::run::simulate(input, &mut extra, RunOptions::default())
+            let opts = RunOptions::with_threads((threads > 0).then_some(threads));
+            catena::run::simulate(input, &mut extra, opts)
         })
         .map_err(err)?;
     if let Some(e) = prog.error.take() {
@@ -318,6 +321,7 @@ fn run<'py>(
         "step_cuts": r.cuts,
         "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
+        "stepping_threads": r.stepping_threads,
         "records": nr,
         "time_step": r.spec.dt,
         "envelope_start": r.spec.envelope_start,
