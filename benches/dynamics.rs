@@ -138,6 +138,7 @@ fn waves(c: &mut Criterion) {
     let line400_exact = line400.edited(&exact, &files).expect("exact");
     let storm23_case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
     let storm23 = catena::run::statics::read_scene(&storm23_case).expect("storm 23");
+    two_threads_in_a_storm(c, storm23.clone());
     let storm23_exact = storm23
         .edited(&exact, &DirResolver::beside(&storm23_case))
         .expect("exact");
@@ -173,11 +174,19 @@ fn waves(c: &mut Criterion) {
             s.resize(nodes.len(), None);
         }
         let at = |_: f64, i: usize| nodes[i];
+        let all = 0..nodes.len();
         // The samples around the first step's end are the previous steps' (as in a run): taken
         // before the timing; within it, a new sample every `h`, as a run takes them.
         if h > 0.0 {
             let first = grid_index(state.t + spec.dt, h);
-            fill_interval(waves, h, first, None, at, &mut grid, &mut sc);
+            fill_interval(
+                waves,
+                (h, first),
+                None,
+                at,
+                (&mut grid, all.clone()),
+                &mut sc,
+            );
         }
         let start = grid.clone();
         let mut next = grid.clone();
@@ -193,7 +202,8 @@ fn waves(c: &mut Criterion) {
                     if h > 0.0 {
                         let m = grid_index(t, h);
                         if grid.index != m {
-                            fill_interval(waves, h, m, Some(&grid), at, &mut next, &mut sc);
+                            let to = (&mut next, all.clone());
+                            fill_interval(waves, (h, m), Some(&grid), at, to, &mut sc);
                             std::mem::swap(&mut grid, &mut next);
                         }
                         let s = (t - (m - 1) as f64 * h) / h;
@@ -215,6 +225,39 @@ fn waves(c: &mut Criterion) {
             })
         });
     }
+    g.finish();
+}
+
+/// Storm 23 on its fatigue mesh, 200 steps from 120 s on one thread and on two (a [`Pair`], each
+/// thread taking the water kinematics at its own nodes; started for each round, as the partner's
+/// State must start from the same State).
+fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserScene) {
+    const N: usize = 200;
+    let (spec, dm, mut ws, state) = storm_at_120_s(scene);
+    let mut g = c.benchmark_group("storm_two_threads");
+    g.sample_size(10);
+    g.bench_function("storm23_200_steps_1t", |b| {
+        b.iter(|| {
+            let mut s = state.clone();
+            for _ in 0..N {
+                dynamics::advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+            }
+            s
+        })
+    });
+    g.bench_function("storm23_200_steps_2t", |b| {
+        b.iter(|| {
+            let mut s = state.clone();
+            let mut pair = Pair::start(&dm, &s, &mut ws)
+                .expect("a thread")
+                .expect("a line in two parts");
+            for _ in 0..N {
+                pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+            }
+            pair.stop(&dm, &mut ws);
+            s
+        })
+    });
     g.finish();
 }
 

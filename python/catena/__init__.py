@@ -90,7 +90,7 @@ def run(scene, progress=None, every: int = 100, threads: int = 0) -> Results:
 
     The interpreter lock is released while catena steps, so runs in several threads run in
     parallel. ``threads`` is the number of threads the run may keep busy (0: every core): from two,
-    the line is stepped on two threads where the scene allows it (no waves yet), with the same
+    the line is stepped on two threads where the scene allows it (not a pipe-lay run), with the same
     results to the bit. Runs side by side in several Python threads should share the cores
     (``threads=1`` each on two cores): two threads stepping one line in lockstep slow down when
     they share a core with another. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
@@ -105,24 +105,29 @@ def run(scene, progress=None, every: int = 100, threads: int = 0) -> Results:
     return Results(_catena.run(_scene(scene), progress, every, threads))
 
 
-def fatigue_study(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
+def fatigue_study(path, jobs: int = 0, executor=None, checkpoint=None,
+                  task_threads: int = 1) -> Results:
     """A fatigue study file (storm table and fatigue table, ``docs/study.md``).
 
     Without ``executor`` the storms run in parallel on ``jobs`` threads (0: every core). With one
     (a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``) each storm is a task on
     it, and the result is the same to the bit; ``checkpoint=DIR`` keeps each finished storm so that
-    a second call after a failure (:class:`TasksFailed`) runs only the rest.
+    a second call after a failure (:class:`TasksFailed`) runs only the rest. ``task_threads`` is
+    the threads each task may keep busy (0: the worker's cores): 1 by default, since an executor
+    runs a task per worker, usually one per core; give more to workers that run fewer tasks than
+    their cores.
 
     Arrays: ``arc`` (m), ``damage_<fibre>`` (per year) and ``life_<fibre>`` (years) along the arc;
     ``summary["lives"]`` gives each fibre's minimum life (years) and where (m), and
     ``summary["storms"]`` each storm's wall time (s) and whether it stopped.
     """
     if executor is not None:
-        return Results(_tasks.fatigue_study(path, executor, checkpoint))
+        return Results(_tasks.fatigue_study(path, executor, checkpoint, task_threads))
     return Results(_catena.fatigue_study(str(path), jobs))
 
 
-def sequence(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
+def sequence(path, jobs: int = 0, executor=None, checkpoint=None,
+             task_threads: int = 1) -> Results:
     """Storms in sequence (a sequence file, ``docs/sequence.md``): each visit from the state the
     last one left (the trench, the degraded soil), the as-laid visits alongside.
 
@@ -130,7 +135,7 @@ def sequence(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
     one (``concurrent.futures`` or a Dask client) each visit is a task: the visits with memory a
     chain, each sent when the one before has finished with the state it left, the as-laid visits
     independent; ``checkpoint=DIR`` keeps finished visits (and the state after each) for a second
-    call.
+    call; ``task_threads`` as for :func:`fatigue_study`.
 
     Arrays: ``arc`` (m), ``trench`` (visits x nodes: penetration at rest after each visit, m,
     positive down), ``as_laid_penetration`` (m), ``life_memory`` and ``life_as_laid`` (years, the
@@ -138,22 +143,22 @@ def sequence(path, jobs: int = 0, executor=None, checkpoint=None) -> Results:
     memory: the command line (``catena sequence``) writes files and resumes.
     """
     if executor is not None:
-        return Results(_tasks.sequence(path, executor, checkpoint))
+        return Results(_tasks.sequence(path, executor, checkpoint, task_threads))
     return Results(_catena.sequence(str(path), jobs))
 
 
-def sweep(path, jobs: int = 0, executor=None, checkpoint=None) -> list:
+def sweep(path, jobs: int = 0, executor=None, checkpoint=None, task_threads: int = 1) -> list:
     """A sweep plan (``docs/sweep.md``): one dict per parameter point, with ``values`` (the
     point's keys and values), ``min_life_years`` (years), ``min_life_arc`` (m),
     ``tdz_moment_range`` (N*m), ``max_penetration`` (m) and ``failed`` (why, or ``None``).
 
     Without ``executor`` every run in parallel on ``jobs`` threads (0: every core); with one
     (``concurrent.futures`` or a Dask client) each run (a point, or a point's storm for a study
-    base) is a task, with the same result to the bit; ``checkpoint=DIR`` as for
-    :func:`fatigue_study`.
+    base) is a task, with the same result to the bit; ``checkpoint=DIR`` and ``task_threads`` as
+    for :func:`fatigue_study`.
     """
     if executor is not None:
-        return _json.loads(_tasks.sweep(path, executor, checkpoint))
+        return _json.loads(_tasks.sweep(path, executor, checkpoint, task_threads))
     return _json.loads(_catena.sweep(str(path), jobs))
 
 

@@ -34,24 +34,27 @@ class TasksFailed(_catena.CatenaError):
 
 # The tasks: top-level functions, so that an executor can send them to another process.
 
-def study_storm(path, index):
+# `threads`: the threads the task's run may keep busy (0: the worker's cores; 1 by default, as an
+# executor runs a task per worker, usually one per core).
+
+def study_storm(path, index, threads=1):
     """One storm of a study: its result as JSON text."""
-    return _catena.study_storm(path, index)
+    return _catena.study_storm(path, index, threads)
 
 
-def sweep_run(path, index):
+def sweep_run(path, index, threads=1):
     """One run of a sweep: its result as JSON text."""
-    return _catena.sweep_run(path, index)
+    return _catena.sweep_run(path, index, threads)
 
 
-def sequence_visit(path, index, carry):
+def sequence_visit(path, index, carry, threads=1):
     """One visit with memory: ``(result, carry)`` as JSON texts."""
-    return _catena.sequence_visit(path, index, carry)
+    return _catena.sequence_visit(path, index, carry, threads)
 
 
-def sequence_as_laid(path, index):
+def sequence_as_laid(path, index, threads=1):
     """One visit from the as-laid state: its result as JSON text."""
-    return _catena.sequence_as_laid(path, index)
+    return _catena.sequence_as_laid(path, index, threads)
 
 
 def _executor(executor):
@@ -134,34 +137,35 @@ def _raise_failed(what, failed, total, checkpoint):
     )
 
 
-def _independent(path, plan, name, task, executor, checkpoint):
-    """Runs a plan's independent tasks (``name(t)`` names each, ``task`` runs it on the path and
-    the task's index); returns their results in the plan's order (every one: a failure raises)."""
+def _independent(path, plan, name, task, executor, checkpoint, threads):
+    """Runs a plan's independent tasks (``name(t)`` names each, ``task`` runs it on the path, the
+    task's index and ``threads``); returns their results in the plan's order (every one: a failure
+    raises)."""
     store = _Store(checkpoint)
-    tasks = [(name(t), t["scene_hash"], task, (path, t["index"])) for t in plan]
+    tasks = [(name(t), t["scene_hash"], task, (path, t["index"], threads)) for t in plan]
     done, failed = _run_all(_executor(executor), tasks, store)
     if failed:
         _raise_failed(path, failed, len(tasks), checkpoint)
     return [done[n] for n, *_ in tasks]
 
 
-def fatigue_study(path, executor, checkpoint):
+def fatigue_study(path, executor, checkpoint, threads=1):
     path = str(_Path(path).resolve())
     plan = _json.loads(_catena.study_tasks(path))
     results = _independent(path, plan, lambda t: f"storm-{t['id']}", study_storm, executor,
-                           checkpoint)
+                           checkpoint, threads)
     return _catena.study_merge(path, results)
 
 
-def sweep(path, executor, checkpoint):
+def sweep(path, executor, checkpoint, threads=1):
     path = str(_Path(path).resolve())
     plan = _json.loads(_catena.sweep_tasks(path))
     results = _independent(path, plan, lambda t: f"run-{t['id']}", sweep_run, executor,
-                           checkpoint)
+                           checkpoint, threads)
     return _catena.sweep_merge(path, results)
 
 
-def sequence(path, executor, checkpoint):
+def sequence(path, executor, checkpoint, threads=1):
     """The visits with memory as a chain of tasks (each submitted when the one before has
     finished, with its carry), the as-laid visits as independent tasks alongside."""
     path = str(_Path(path).resolve())
@@ -170,7 +174,7 @@ def sequence(path, executor, checkpoint):
     ex = _executor(executor)
     store = _Store(checkpoint)
     laid_tasks = [
-        (f"as-laid-{v['index']}", v["scene_hash"], sequence_as_laid, (path, v["index"]))
+        (f"as-laid-{v['index']}", v["scene_hash"], sequence_as_laid, (path, v["index"], threads))
         for v in visits
     ] if plan["as_laid"] else []
     # The as-laid visits go first to the executor; the chain runs alongside them.
@@ -182,7 +186,8 @@ def sequence(path, executor, checkpoint):
             saved = store.get(name, v["scene_hash"])
             if saved is None:
                 try:
-                    saved = list(ex.submit(sequence_visit, path, v["index"], carry).result())
+                    task = ex.submit(sequence_visit, path, v["index"], carry, threads)
+                    saved = list(task.result())
                 except Exception as e:
                     failed[name] = _error_text(e)
                     break

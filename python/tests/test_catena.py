@@ -251,6 +251,11 @@ def test_studies_sweeps_and_sequences_on_an_executor_give_the_same_bits(tmp_path
             assert np.array_equal(local[name], tasks[name]), name
         assert local.summary["lives"] == tasks.summary["lives"]
         assert catena.sweep(plan, jobs=2) == catena.sweep(plan, executor=ex)
+    # A task on two threads (its storm stepped by two, waves and all) gives the same bits.
+    with ThreadPoolExecutor(1) as ex:
+        paired = catena.fatigue_study(study, executor=ex, task_threads=2)
+        for name in ["arc", "damage_outer", "life_outer"]:
+            assert np.array_equal(local[name], paired[name]), name
 
 
 def test_a_failed_task_is_reported_and_the_rest_resume_from_the_checkpoint(tmp_path, monkeypatch):
@@ -260,11 +265,11 @@ def test_a_failed_task_is_reported_and_the_rest_resume_from_the_checkpoint(tmp_p
     real = catena._tasks.study_storm
     calls = []
 
-    def flaky(path, index):
+    def flaky(path, index, threads=1):
         calls.append(index)
         if index == 1 and calls.count(1) == 1:
             raise RuntimeError("worker lost")
-        return real(path, index)
+        return real(path, index, threads)
 
     monkeypatch.setattr(catena._tasks, "study_storm", flaky)
     ck = tmp_path / "ck"

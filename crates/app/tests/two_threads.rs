@@ -9,9 +9,12 @@
 use std::path::Path;
 
 use catena::run;
+use catena::scene::edit::Edit;
+use catena::scene::DirResolver;
 use catena::statics;
 use catena_fe::assembly::LineResults;
 use catena_fe::dynamics::{self, DynState, DynWorkspace, Pair};
+use catena_fe::wave_sampling::Sample;
 
 /// The bits of a list of numbers.
 fn bits(x: &[f64]) -> Vec<u64> {
@@ -41,6 +44,24 @@ fn same_state(case: &str, k: usize, one: &DynState, two: &DynState) {
         two.t.to_bits(),
         "{case}: step {k}: t differs"
     );
+    let grid = |s: &DynState| {
+        s.wave_grid.as_ref().map(|g| {
+            let sample = |x: &Option<_>| -> Vec<u64> {
+                x.iter()
+                    .flat_map(|s: &Sample| [s.v, s.a, s.j])
+                    .flatten()
+                    .map(f64::to_bits)
+                    .collect()
+            };
+            let samples: Vec<_> = g.samples.iter().flatten().map(sample).collect();
+            (g.index, samples)
+        })
+    };
+    assert_eq!(
+        grid(one),
+        grid(two),
+        "{case}: step {k}: the wave kinematics samples differ"
+    );
 }
 
 fn same_results(case: &str, k: usize, one: &LineResults, two: &LineResults) {
@@ -59,10 +80,21 @@ fn same_results(case: &str, k: usize, one: &LineResults, two: &LineResults) {
 
 /// Steps `case` `steps` times on one thread and on two; returns the step cuts and retries taken.
 fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
+    let (cuts, retries, _) = edited_one_and_two(case, &[], steps);
+    (cuts, retries)
+}
+
+/// [`one_and_two`] on `case` with `edits`; also returns how many of the steps had a node out of
+/// the water at a wave kinematics sample.
+fn edited_one_and_two(case: &str, edits: &[Edit], steps: usize) -> (u32, u32, usize) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../cases")
         .join(case);
-    let st = statics::solve(statics::read_scene(&path).expect("case")).expect("statics");
+    let scene = statics::read_scene(&path).expect("case");
+    let scene = scene
+        .edited(edits, &DirResolver::beside(&path))
+        .expect("edits");
+    let st = statics::solve(scene).expect("statics");
     let (spec, dm) = run::prepare(&st).expect("dynamic model");
     let n = dm.line.nodes();
     let mut ws1 = DynWorkspace::new(&dm.line).expect("workspace");
@@ -73,13 +105,18 @@ fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
         .expect("a thread")
         .unwrap_or_else(|| panic!("{case}: a line a pair steps"));
     let (mut r1, mut r2) = (LineResults::new(n), LineResults::new(n));
-    let (mut cuts, mut retries) = (0, 0);
+    let (mut cuts, mut retries, mut dry) = (0, 0, 0);
     for k in 1..=steps {
         let i1 = dynamics::advance(&dm, &mut one, &mut ws1, spec.dt);
         let i2 = pair.advance(&dm, &mut two, &mut ws2, spec.dt);
         assert_eq!(i1, i2, "{case}: step {k}: the steps' outcomes differ");
         let info = i1.unwrap_or_else(|e| panic!("{case}: step {k}: {e}"));
         (cuts, retries) = (cuts + info.cuts, retries + info.retries);
+        let samples = one
+            .wave_grid
+            .iter()
+            .flat_map(|g| g.samples.iter().flatten());
+        dry += usize::from(samples.clone().any(Option::is_none));
         // As a run does: the time is the step count times Δt.
         one.t = k as f64 * spec.dt;
         two.t = one.t;
@@ -97,8 +134,8 @@ fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
     );
     assert_eq!(m1.dt.to_bits(), m2.dt.to_bits());
     pair.stop(&dm, &mut ws2);
-    println!("{case}: {steps} steps, {cuts} cuts, {retries} retries: the same bits");
-    (cuts, retries)
+    println!("{case}: {steps} steps, {cuts} cuts, {retries} retries, {dry} with a node out of the water: the same bits");
+    (cuts, retries, dry)
 }
 
 #[test]
@@ -134,6 +171,23 @@ fn two_threads_step_friction_zones_and_attachments_as_one_to_the_bit() {
 #[test]
 fn two_threads_step_a_heaved_lazy_wave_as_one_to_the_bit() {
     one_and_two("lazy-wave/cabledyn-heave.toml", 600);
+}
+
+/// Waves, their kinematics taken at each thread's own nodes: storm 23's JONSWAP sea (400
+/// components) with the semi-submersible's RAO motion, its kinematics sampled on the time grid,
+/// exact at every step, and with the hang-off 1 m below the surface (nodes out of the water at a
+/// sample get their exact kinematics); and Airy's regular wave on a riser held still.
+#[test]
+fn two_threads_step_waves_as_one_to_the_bit() {
+    let storm = "scr1000/storm23.toml";
+    let ramp = Edit::set("waves.ramp", 5.0);
+    edited_one_and_two(storm, std::slice::from_ref(&ramp), 300);
+    let exact = Edit::set("waves.kinematics_interval", 0.0);
+    edited_one_and_two(storm, &[ramp.clone(), exact], 150);
+    let above = Edit::set("ends.top_z", 999.0);
+    let (_, _, dry) = edited_one_and_two(storm, &[ramp, above], 300);
+    assert!(dry > 0, "no node was ever out of the water");
+    one_and_two("benchmarks/riser-airy-wave.toml", 300);
 }
 
 /// A run on two threads (`RunOptions::threads`) is the run on one, to the bit: the heave
@@ -205,7 +259,7 @@ impl catena::observe::Observer for Busy {
 }
 
 /// A run steps the line on two threads where its threads leave two beside its observers' own
-/// (the HDF5 writer's), and the scene has no waves; else on one.
+/// (the HDF5 writer's), with waves or without; else on one.
 #[test]
 fn a_run_steps_on_two_threads_only_where_it_has_them() {
     use catena::run::RunOptions;
@@ -227,5 +281,8 @@ fn a_run_steps_on_two_threads_only_where_it_has_them() {
     st.scene.dynamic.as_mut().expect("dynamic").duration = 1.0;
     let opts = RunOptions::with_threads(Some(2));
     let r = run::run(st, &mut [], opts).expect("runs");
-    assert_eq!(r.stepping_threads, 1, "waves are not split yet");
+    assert_eq!(
+        r.stepping_threads, 2,
+        "a scene with waves steps on two threads"
+    );
 }

@@ -78,8 +78,8 @@ enum Command {
         #[arg(long, value_name = "WHEN", default_value = "auto", value_parser = ["auto", "yes", "no"])]
         compress: String,
         /// The threads the run may keep busy (default: the machine's cores), the HDF5 writer's
-        /// counted: from 3, the line is stepped on two threads where the scene allows it (no
-        /// waves yet); the fatigue damage is counted on a thread of its own where one is left.
+        /// counted: from 3, the line is stepped on two threads (not yet in a pipe-lay run); the
+        /// fatigue damage is counted on a thread of its own where one is left.
         /// The results are the same whatever the number; the plots have threads of their own.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,

@@ -38,6 +38,8 @@
 //! A node with no water at either sample (above the surface) gets the exact kinematics at its
 //! predicted position, as without sampling. With `h = 0` (or no waves) nothing here runs.
 
+use std::ops::Range;
+
 use serde::{Deserialize, Serialize};
 
 #[cfg(test)]
@@ -89,18 +91,18 @@ pub fn interpolate(k0: &Sample, k1: &Sample, s: f64, h: f64) -> Kinematics {
     out
 }
 
-/// Samples every node at time `t` into `out`, at the positions `(x, z)` (z up from the still
-/// water level) that `position(i)` gives.
+/// Samples the nodes `nodes` at time `t` into `out` (one entry per node of the line), at the
+/// positions `(x, z)` (z up from the still water level) that `position(i)` gives.
 pub fn sample_nodes<W: WaveKinematics>(
     waves: &W,
     t: f64,
     position: impl Fn(usize) -> (f64, f64),
-    out: &mut [Option<Sample>],
+    (out, nodes): (&mut [Option<Sample>], Range<usize>),
     sc: &mut W::Scratch,
 ) {
-    for (i, o) in out.iter_mut().enumerate() {
+    for i in nodes {
         let (x, z) = position(i);
-        *o = waves.water_and_jerk_at(x, z, t, sc).map(|(k, j)| Sample {
+        out[i] = waves.water_and_jerk_at(x, z, t, sc).map(|(k, j)| Sample {
             v: k.velocity,
             a: k.acceleration,
             j,
@@ -108,24 +110,28 @@ pub fn sample_nodes<W: WaveKinematics>(
     }
 }
 
-/// Makes `grid` hold the samples of the interval `((m − 1)·h, m·h]`: the earlier one copied from
-/// `prev` when `prev` holds the interval before (each grid time is sampled once), else sampled;
-/// the later one sampled. `position(t, i)` is node `i`'s `(x, z)` at grid time `t`.
+/// Makes `grid` hold, at the nodes `nodes`, the samples of the interval `((m − 1)·h, m·h]`: the
+/// earlier one copied from `prev` when `prev` holds the interval before (each grid time is sampled
+/// once), else sampled; the later one sampled. `position(t, i)` is node `i`'s `(x, z)` at grid
+/// time `t`. A thread that steps a part of the line ([`crate::dynamics::Pair`]) samples its own
+/// nodes; each node's samples are the same whichever thread takes them.
 pub fn fill_interval<W: WaveKinematics>(
     waves: &W,
-    h: f64,
-    m: u64,
+    (h, m): (f64, u64),
     prev: Option<&KinematicsGrid>,
     position: impl Fn(f64, usize) -> (f64, f64),
-    grid: &mut KinematicsGrid,
+    (grid, nodes): (&mut KinematicsGrid, Range<usize>),
     sc: &mut W::Scratch,
 ) {
     let (t0, t1) = ((m - 1) as f64 * h, m as f64 * h);
+    let [s0, s1] = &mut grid.samples;
     match prev {
-        Some(g) if g.index + 1 == m => grid.samples[0].copy_from_slice(&g.samples[1]),
-        _ => sample_nodes(waves, t0, |i| position(t0, i), &mut grid.samples[0], sc),
+        Some(g) if g.index + 1 == m => {
+            s0[nodes.clone()].copy_from_slice(&g.samples[1][nodes.clone()]);
+        }
+        _ => sample_nodes(waves, t0, |i| position(t0, i), (s0, nodes.clone()), sc),
     }
-    sample_nodes(waves, t1, |i| position(t1, i), &mut grid.samples[1], sc);
+    sample_nodes(waves, t1, |i| position(t1, i), (s1, nodes), sc);
     grid.index = m;
 }
 

@@ -409,6 +409,14 @@ fn run_lay<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>
     Ok(out)
 }
 
+/// The threads an executor's task may keep busy (0: the machine's cores,
+/// [`RunOptions::threads`]). The tasks default to 1: an executor runs as many tasks side by side as
+/// it has workers, usually one per core, and a run on two threads beside another would
+/// oversubscribe the cores (the results are the same to the bit whatever the number).
+fn task_threads(threads: usize) -> Option<usize> {
+    (threads > 0).then_some(threads)
+}
+
 /// Runs `f` on `jobs` threads (0: all cores) with the interpreter released.
 fn on_threads<T: Send>(
     py: Python<'_>,
@@ -494,13 +502,16 @@ fn study_tasks(path: PathBuf) -> PyResult<String> {
 }
 
 /// One storm of a study (the `index`-th of its table), run with the interpreter released: the
-/// storm's result as JSON text (its damage per fibre along the arc, exact).
+/// storm's result as JSON text (its damage per fibre along the arc, exact). `threads`: the threads
+/// the run may keep busy ([`task_threads`]).
 #[pyfunction]
-fn study_storm(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+#[pyo3(signature = (path, index, threads = 1))]
+fn study_storm(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyResult<String> {
     let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
+    let threads = task_threads(threads);
     let r = py
-        .detach(|| catena::studies::fatigue_study::run_storm(storm, scene, None))
+        .detach(|| catena::studies::fatigue_study::run_storm(storm, scene, threads))
         .map_err(err)?;
     to_json(&r)
 }
@@ -659,12 +670,13 @@ fn sequence_tasks(path: PathBuf) -> PyResult<String> {
 /// as-laid state): `(result, carry)` as JSON texts, the carry `None` when the sequence stops here
 /// (the visit's run stopped early).
 #[pyfunction]
-#[pyo3(signature = (path, index, carry = None))]
+#[pyo3(signature = (path, index, carry = None, threads = 1))]
 fn sequence_visit(
     py: Python<'_>,
     path: PathBuf,
     index: usize,
     carry: Option<String>,
+    threads: usize,
 ) -> PyResult<(String, Option<String>)> {
     let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
@@ -683,18 +695,24 @@ fn sequence_visit(
         )));
     }
     let (r, next) = py
-        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, None))
+        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, task_threads(threads)))
         .map_err(err)?;
     Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
 }
 
 /// One visit from the as-laid state: its result as JSON text.
 #[pyfunction]
-fn sequence_as_laid(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+#[pyo3(signature = (path, index, threads = 1))]
+fn sequence_as_laid(
+    py: Python<'_>,
+    path: PathBuf,
+    index: usize,
+    threads: usize,
+) -> PyResult<String> {
     let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
     let r = py
-        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, None))
+        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, task_threads(threads)))
         .map_err(err)?;
     to_json(&r)
 }
@@ -824,11 +842,13 @@ fn sweep_tasks(path: PathBuf) -> PyResult<String> {
 /// One run of a sweep, with the interpreter released: its result as JSON text (a run that fails
 /// says why in its `error`, as on the command line).
 #[pyfunction]
-fn sweep_run(py: Python<'_>, path: PathBuf, index: usize) -> PyResult<String> {
+#[pyo3(signature = (path, index, threads = 1))]
+fn sweep_run(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyResult<String> {
     let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let spec = &runs[task("run", index, runs.len())?];
-    to_json(&py.detach(|| catena::studies::sweep::run_one(spec, None)))
+    let threads = task_threads(threads);
+    to_json(&py.detach(|| catena::studies::sweep::run_one(spec, threads)))
 }
 
 /// A sweep's table from its runs' results (JSON texts, or `None` for a run without one, which

@@ -22,7 +22,10 @@
 //! handed over after each step ([`Pair::advance`]), so that the results and the observers read
 //! one whole State.
 //!
-//! Not split yet: the wave kinematics (a scene with waves steps on one thread).
+//! The water kinematics of a scene with waves are taken at each thread's own nodes (the loads
+//! read them there only): the samples on the wave grid too, from the committed State, so each
+//! node's samples are the same whichever thread takes them, and the second part's are handed
+//! over with its State.
 
 use std::ops::Range;
 
@@ -308,8 +311,8 @@ impl std::fmt::Debug for Pair {
 impl Pair {
     /// Starts the second thread from `state`, and makes `ws` (the calling thread's) step the first
     /// part. `None` when the line is not cut in parts (a band factorised top-down: lines of fewer
-    /// than [`crate::sparse::TWIST_MIN`] equations) or the scene has waves (not split yet). The
-    /// Model must not change while the pair steps ([`Pair::stop`] first).
+    /// than [`crate::sparse::TWIST_MIN`] equations). The Model must not change while the pair
+    /// steps ([`Pair::stop`] first).
     pub fn start(
         dm: &DynamicModel,
         state: &DynState,
@@ -318,7 +321,7 @@ impl Pair {
         let Some(split) = ws.split else {
             return Ok(None);
         };
-        if dm.environment.waves.is_some() || ws.lane.is_some() {
+        if ws.lane.is_some() {
             return Ok(None);
         }
         let mut theirs = DynWorkspace::new(&dm.line).map_err(std::io::Error::other)?;
@@ -382,6 +385,12 @@ impl Pair {
         let per = state.friction_anchor.len() / n;
         let anchors = per * (k + 1)..per * n;
         state.friction_anchor[anchors.clone()].copy_from_slice(&w.state.friction_anchor[anchors]);
+        if let (Some(to), Some(from)) = (&mut state.wave_grid, &w.state.wave_grid) {
+            to.index = from.index;
+            for (to, from) in to.samples.iter_mut().zip(&from.samples) {
+                to[nodes.clone()].copy_from_slice(&from[nodes.clone()]);
+            }
+        }
         ws.mass[nodes.clone()].copy_from_slice(&w.ws.mass[nodes.clone()]);
         let force = &mut ws.loads.seabed_force;
         force[nodes.clone()].copy_from_slice(&w.ws.loads.seabed_force[nodes]);

@@ -1,6 +1,8 @@
 //! The water kinematics of a step: sampled on the wave grid from the committed State when a
 //! step first needs them, interpolated at the step's end (generic over the wave theory).
 
+use std::ops::Range;
+
 use crate::assembly::Placement;
 use crate::wave_sampling::{fill_interval, grid_index, interpolate, KinematicsGrid};
 use crate::waves::{Kinematics, WaveKinematics};
@@ -15,6 +17,7 @@ pub(super) fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &
         return;
     };
     let out = WaterOut {
+        nodes: ws.scope.part.nodes.clone(),
         kin: &mut ws.wave_kin,
         scratch: &mut ws.wave_scratch,
         grid: &mut ws.grid_trial,
@@ -23,9 +26,11 @@ pub(super) fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &
     water_kinematics(waves, &dm.placement, env.water_level, state, t, &ws.u, out);
 }
 
-/// Where [`water_kinematics`] writes: each node's kinematics, the theory's scratch, and the new
-/// samples of the step (and whether it took any).
+/// Where [`water_kinematics`] writes: at the nodes `nodes` (this thread's own: the loads it
+/// assembles read the kinematics at those only), their kinematics, the theory's scratch, and the
+/// new samples of the step (and whether it took any).
 pub(super) struct WaterOut<'a, S> {
+    nodes: Range<usize>,
     kin: &'a mut [Option<Kinematics>],
     scratch: &'a mut S,
     grid: &'a mut KinematicsGrid,
@@ -55,10 +60,11 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
             pl.base[3 * i + 1] + u[3 * i + 1] - level,
         )
     };
+    let nodes = out.nodes;
     if h <= 0.0 {
-        for (i, k) in out.kin.iter_mut().enumerate() {
+        for i in nodes {
             let (x, z) = predicted(i);
-            *k = waves.water_at(x, z, t, out.scratch);
+            out.kin[i] = waves.water_at(x, z, t, out.scratch);
         }
         return;
     }
@@ -77,12 +83,14 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
             s.resize(n, None); // sized once
         }
         let prev = state.wave_grid.as_ref();
-        fill_interval(waves, h, m, prev, at, out.grid, out.scratch);
+        let to = (&mut *out.grid, nodes.clone());
+        fill_interval(waves, (h, m), prev, at, to, out.scratch);
         *out.grid_new = true;
     }
     let grid = reuse.unwrap_or(out.grid);
     let s = (t - (m - 1) as f64 * h) / h;
-    for (i, k) in out.kin.iter_mut().enumerate() {
+    for (i, k) in out.kin[nodes.clone()].iter_mut().enumerate() {
+        let i = nodes.start + i;
         // Each arm writes its own answer: a `match` that returned one built the interpolated
         // value on the stack and copied it over with loads straddling its stores, a stall per
         // node (1.7 % of the 3-hour storm's samples).
