@@ -230,32 +230,40 @@ fn sampled_kinematics_are_the_exact_ones_within_1e_4() {
     assert!(rel(da, db) < 1e-3, "damage {da} vs {db}");
 }
 
-/// A run's threads (`RunOptions::threads`) say where the fatigue damage is counted, on the
-/// stepping thread (1) or on a thread of its own (2), and change nothing else: 30 s of storm 23
-/// run both ways, the damage and the counters' state the same to the bit. (A study at `--jobs`
-/// equal to the cores gives each storm one thread: `schedule::threads_per_run`.)
+/// A run's threads (`RunOptions::threads`) say where the line is stepped and the fatigue damage
+/// counted, and change nothing else: 30 s of storm 23 run on one thread (counting on the stepping
+/// thread), on two (the line stepped by a pair, counting on its first thread) and on three (a
+/// pair, counting on a thread of its own), the damage, the counters' state and the envelopes the
+/// same to the bit. (A study at `--jobs` equal to the cores gives each storm one thread:
+/// `schedule::threads_per_run`.)
 #[test]
-fn fatigue_counts_the_same_on_one_thread_or_two() {
+fn fatigue_counts_the_same_on_one_thread_or_more() {
     let on = |threads| {
         let opts = RunOptions::with_threads(Some(threads));
         run::run(short_storm(&[]), &mut [], opts).expect("runs")
     };
-    let (one, two) = (on(1), on(2));
-    let (f1, f2) = (
-        one.fatigue.as_ref().expect("fatigue"),
-        two.fatigue.as_ref().expect("fatigue"),
-    );
-    assert!(!f1.threaded(), "one thread counts on the stepping thread");
-    assert!(f2.threaded(), "two threads count on a thread of their own");
-    let (c1, c2) = (
-        f1.counting().expect("counted"),
-        f2.counting().expect("counted"),
+    let runs = [on(1), on(2), on(3)];
+    let stepping = runs.each_ref().map(|r| r.stepping_threads);
+    assert_eq!(stepping, [1, 2, 2], "the threads stepping the line");
+    let fatigue = runs
+        .each_ref()
+        .map(|r| r.fatigue.as_ref().expect("fatigue"));
+    let threaded = fatigue.map(|f| f.threaded());
+    assert_eq!(
+        threaded,
+        [false, false, true],
+        "counted on a thread of its own"
     );
     let bits = |d: &[f64]| d.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let c1 = fatigue[0].counting().expect("counted");
     assert!(c1.damage.iter().any(|&d| d > 0.0), "damage counted");
-    assert_eq!(bits(&c1.damage), bits(&c2.damage), "damage");
-    assert_eq!(c1, c2, "counters");
-    assert_eq!(one.envelopes, two.envelopes, "envelopes");
+    for (r, f) in runs.iter().zip(fatigue).skip(1) {
+        let c = f.counting().expect("counted");
+        let n = r.stepping_threads;
+        assert_eq!(bits(&c1.damage), bits(&c.damage), "damage ({n} stepping)");
+        assert_eq!(c1, c, "counters ({n} stepping)");
+        assert_eq!(runs[0].envelopes, r.envelopes, "envelopes ({n} stepping)");
+    }
 }
 
 /// With sampled kinematics, a run stopped at a checkpoint in the middle of a sampling interval
