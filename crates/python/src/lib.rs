@@ -249,7 +249,7 @@ fn run<'py>(
     let r = py
         .detach(|| {
             let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
-            let opts = RunOptions::with_threads((threads > 0).then_some(threads));
+            let opts = RunOptions::with_threads(run_threads(threads));
             catena::run::simulate(input, &mut extra, opts)
         })
         .map_err(err)?;
@@ -409,11 +409,11 @@ fn run_lay<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>
     Ok(out)
 }
 
-/// The threads an executor's task may keep busy (0: the machine's cores,
-/// [`RunOptions::threads`]). The tasks default to 1: an executor runs as many tasks side by side as
-/// it has workers, usually one per core, and a run on two threads beside another would
-/// oversubscribe the cores (the results are the same to the bit whatever the number).
-fn task_threads(threads: usize) -> Option<usize> {
+/// The threads a run may keep busy, as Python gives them (0: the machine's cores), as
+/// [`RunOptions::threads`] takes them. An executor's tasks default to 1: an executor runs as many
+/// tasks side by side as it has workers, usually one per core, and a run on two threads beside
+/// another would oversubscribe the cores (the results are the same to the bit whatever the number).
+fn run_threads(threads: usize) -> Option<usize> {
     (threads > 0).then_some(threads)
 }
 
@@ -503,13 +503,13 @@ fn study_tasks(path: PathBuf) -> PyResult<String> {
 
 /// One storm of a study (the `index`-th of its table), run with the interpreter released: the
 /// storm's result as JSON text (its damage per fibre along the arc, exact). `threads`: the threads
-/// the run may keep busy ([`task_threads`]).
+/// the run may keep busy ([`run_threads`]).
 #[pyfunction]
 #[pyo3(signature = (path, index, threads = 1))]
 fn study_storm(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyResult<String> {
     let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
-    let threads = task_threads(threads);
+    let threads = run_threads(threads);
     let r = py
         .detach(|| catena::studies::fatigue_study::run_storm(storm, scene, threads))
         .map_err(err)?;
@@ -695,7 +695,7 @@ fn sequence_visit(
         )));
     }
     let (r, next) = py
-        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, task_threads(threads)))
+        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, run_threads(threads)))
         .map_err(err)?;
     Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
 }
@@ -712,7 +712,7 @@ fn sequence_as_laid(
     let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
     let r = py
-        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, task_threads(threads)))
+        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, run_threads(threads)))
         .map_err(err)?;
     to_json(&r)
 }
@@ -847,7 +847,7 @@ fn sweep_run(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyR
     let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let spec = &runs[task("run", index, runs.len())?];
-    let threads = task_threads(threads);
+    let threads = run_threads(threads);
     to_json(&py.detach(|| catena::studies::sweep::run_one(spec, threads)))
 }
 
