@@ -139,6 +139,7 @@ fn waves(c: &mut Criterion) {
     let storm23_case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/scr1000/storm23.toml");
     let storm23 = catena::run::statics::read_scene(&storm23_case).expect("storm 23");
     two_threads_in_a_storm(c, storm23.clone());
+    storm_phases(c, storm23.clone());
     let storm23_exact = storm23
         .edited(&exact, &DirResolver::beside(&storm23_case))
         .expect("exact");
@@ -258,6 +259,135 @@ fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserS
             s
         })
     });
+    g.finish();
+}
+
+/// What one thread computes of a storm step's phase, on the line or on one part of it (see
+/// [`storm_phases`]): its own Model, State and arrays, as a pair's thread has.
+struct PhaseWork {
+    dm: catena_fe::dynamics::DynamicModel,
+    state: catena_fe::dynamics::DynState,
+    kin: Vec<Option<catena_fe::waves::Kinematics>>,
+    asm: catena_fe::assembly::Assembler,
+    loads: catena_fe::loads::LoadScratch,
+    grid: catena_fe::wave_sampling::KinematicsGrid,
+    prev: catena_fe::wave_sampling::KinematicsGrid,
+    sc: catena_fe::waves::WaveScratch,
+    part: catena_fe::assembly::Part,
+}
+
+/// The phase coded `code` on `w`'s part: 0, the forces and the tangent (the structure, then the
+/// loads: seabed, drag and wave inertia, the wave kinematics given); 1, the wave samples of a grid
+/// time (the earlier one copied from the interval before, as in a run).
+fn phase(w: &mut PhaseWork, code: u8) {
+    use catena_fe::loads::{self, Iterate, SeabedPass, TangentScale};
+    use catena_fe::waves::WaveKinematics;
+    let (dm, st) = (&w.dm, &w.state);
+    if code == 0 {
+        let elements = w.part.elements.clone();
+        w.asm
+            .assemble_structure_part(&dm.line, &dm.placement, &st.u, (0.0, true), elements);
+        let seabed = SeabedPass::Trial {
+            committed: &st.history,
+            anchors: &st.friction_anchor,
+            dt: 0.05,
+            memo: &mut [],
+            keep: None,
+        };
+        let at = Iterate {
+            u: &st.u,
+            v: &st.v,
+            wave_kin: &w.kin,
+        };
+        let scale = TangentScale {
+            with_k: true,
+            k: 0.9,
+            c_v: 40.0,
+        };
+        let to = (&mut w.asm, &mut w.loads);
+        loads::assemble_part(&dm.loads(), &at, seabed, scale, to, &w.part);
+    } else if let Some(waves) = &dm.environment.waves {
+        let (pl, level) = (&dm.placement, dm.environment.water_level);
+        let h = waves.sampling_interval();
+        let m = catena_fe::wave_sampling::grid_index(st.t, h) + 1;
+        let at = |_: f64, i: usize| {
+            (
+                pl.base[3 * i] + st.u[3 * i],
+                pl.base[3 * i + 1] + st.u[3 * i + 1] - level,
+            )
+        };
+        let to = (&mut w.grid, w.part.nodes.clone());
+        catena_fe::wave_sampling::fill_interval(waves, (h, m), Some(&w.prev), at, to, &mut w.sc);
+    }
+}
+
+/// A storm step's phases on one thread and on two (issue 48: "the speed-up of each phase"), storm
+/// 23 on its fatigue mesh at 120 s: the forces and the tangent (`forces_{1,2}t`) and the wave
+/// samples of a grid time (`samples_{1,2}t`), each part alone on one thread too
+/// (`{forces,samples}_{first,second}_part`), on two threads the caller taking the first part and a
+/// [`catena_fe::partner::Partner`] the second, cut where the pair cuts the line
+/// ([`catena_fe::assembly::Assembler::split_at_node`]). The band's factorisation and solve on one
+/// and two threads are `scr1000_factor_{1,2}t` and `scr1000_solve_{1,2}t` (the `statics` bench).
+fn storm_phases(c: &mut Criterion, scene: catena::scene::riser::RiserScene) {
+    use catena_fe::assembly::{Assembler, Part};
+    use catena_fe::partner::Partner;
+    use catena_fe::wave_sampling::KinematicsGrid;
+    use catena_fe::waves::WaveKinematics;
+    let (_, dm, _, state) = storm_at_120_s(scene);
+    let n = dm.line.nodes();
+    let waves = dm.environment.waves.clone().expect("waves");
+    let mut sc = waves.scratch();
+    let (pl, level) = (&dm.placement, dm.environment.water_level);
+    let kin = (0..n)
+        .map(|i| {
+            let (x, z) = (
+                pl.base[3 * i] + state.u[3 * i],
+                pl.base[3 * i + 1] + state.u[3 * i + 1],
+            );
+            waves.water_at(x, z - level, state.t, &mut sc)
+        })
+        .collect();
+    let grid = KinematicsGrid {
+        index: 0,
+        samples: [vec![None; n], vec![None; n]],
+    };
+    let mut asm = Assembler::new(&dm.line).expect("assembler");
+    let k = asm.split_at_node(&dm.line).expect("a band cut in two");
+    let work = |part: Part| PhaseWork {
+        dm: dm.clone(),
+        state: state.clone(),
+        kin: Vec::clone(&kin),
+        asm: Assembler::new(&dm.line).expect("assembler"),
+        loads: catena_fe::loads::LoadScratch::new(n),
+        grid: grid.clone(),
+        prev: KinematicsGrid {
+            index: catena_fe::wave_sampling::grid_index(state.t, waves.sampling_interval()),
+            ..grid.clone()
+        },
+        sc: waves.scratch(),
+        part,
+    };
+    let [first, second] = Part::halves(&dm.line, k);
+    let mut whole = work(Part::whole(&dm.line));
+    let mut parts = [work(first.clone()), work(second.clone())];
+    let mut mine = work(first);
+    let partner = Partner::start(work(second), phase).expect("a thread");
+    let mut g = c.benchmark_group("storm_phases");
+    g.sample_size(20);
+    for (name, code) in [("forces", 0), ("samples", 1)] {
+        g.bench_function(format!("{name}_1t"), |b| b.iter(|| phase(&mut whole, code)));
+        // Each part alone on one thread: how evenly the cut shares the phase.
+        for (w, part) in parts.iter_mut().zip(["first", "second"]) {
+            g.bench_function(format!("{name}_{part}_part"), |b| b.iter(|| phase(w, code)));
+        }
+        g.bench_function(format!("{name}_2t"), |b| {
+            b.iter(|| {
+                partner.ask(code);
+                phase(&mut mine, code);
+                drop(partner.wait());
+            })
+        });
+    }
     g.finish();
 }
 
