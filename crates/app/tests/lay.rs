@@ -417,10 +417,13 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
     let path = std::env::temp_dir().join(format!("catena-lay-cp-{}.json", std::process::id()));
     let first = lay::lay_with(
         solve(),
+        // The checkpoint written by a pair (its solver memory the whole tangent's), the restart
+        // below stepped on one thread.
         lay::LayOptions {
             checkpoint: Some((path.clone(), 2000)),
             restart: None,
             stop_after: Some(2500),
+            threads: Some(2),
         },
         &mut |_| true,
     )
@@ -441,6 +444,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             checkpoint: None,
             restart: Some((bent, "bent".into())),
             stop_after: None,
+            threads: None,
         },
         &mut |_| true,
     )
@@ -455,6 +459,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             checkpoint: None,
             restart: Some((cp, "checkpoint".into())),
             stop_after: None,
+            threads: Some(1),
         },
         &mut |_| true,
     )
@@ -667,6 +672,7 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
         checkpoint,
         restart,
         stop_after,
+        threads: None,
     };
     let first = lay::lay_with(
         solve(),
@@ -896,4 +902,89 @@ fn the_a_and_r_wire_is_a_line_type_section() {
         (0..250).all(|k| ods(k) == (0.09, 0.08, 0.076)),
         "the wire's diameters"
     );
+}
+
+/// A lay on two threads (`LayOptions::threads`: a [`catena_fe::dynamics::Pair`] steps each window,
+/// started again at each window move, the vessel's track, the top's motion and the top element's
+/// rest length set on both threads each step) is the lay on one, to the bit: its records, the
+/// as-laid embedment, every node's seabed history and friction anchors, and the Newton counts. Four
+/// lays: the J-lay in a swell of Hs 2 m on the RAO vessel (400 s, its top moving down the tower);
+/// the calm lay on a tower at 18°, clamped and on a stiff hinge (300 s each, the top at the exit,
+/// the top element's rest length changing every step: a second thread that kept the old one took
+/// other decisions on the hinge, its residual's floor summed over every element); and the violent
+/// tension surge (300 s, pipe paid in and taken back onto the tower).
+#[test]
+fn a_lay_on_two_threads_is_the_lay_on_one_to_the_bit() {
+    let hs2 = case("jlay-12in-hs2.toml").replace("duration = 20100.0 ", "duration = 400.0 ");
+    let steady = case("jlay-12in-steady.toml").replace("duration = 6100.0", "duration = 300.0");
+    let clamped = steady.replace("[lay]\n", "[lay]\ntower_angle_deg = 18.0\n");
+    let hinged = steady.replace(
+        "[lay]\n",
+        "[lay]\ntower_angle_deg = 18.0\ntower = \"hinged\"\ntower_stiffness = 1e10\n",
+    );
+    let surge =
+        case("hard-tension-violent-surge.toml").replace("duration = 1000.0 ", "duration = 300.0 ");
+    let mut taken_back = 0;
+    let lays = [
+        ("hs2", hs2),
+        ("clamped", clamped),
+        ("hinged", hinged),
+        ("surge", surge),
+    ];
+    for (name, text) in lays {
+        let on = |threads| {
+            let st = statics::solve(lay::statics_scene(scene_with_files(&text))).expect("statics");
+            let opts = lay::LayOptions {
+                threads: Some(threads),
+                ..Default::default()
+            };
+            let r = lay::lay_with(st, opts, &mut |_| true).expect("lay");
+            assert!(r.stop.is_none(), "{name}, {threads} threads: {:?}", r.stop);
+            r
+        };
+        let (one, two) = (on(1), on(2));
+        assert_eq!(
+            (one.stepping_threads, two.stepping_threads),
+            (1, 2),
+            "{name}"
+        );
+        assert!(one.windows >= 5, "{name}: {} window moves", one.windows);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let (a, b) = (&one.records, &two.records);
+        for (what, x, y) in [
+            ("time", &a.time, &b.time),
+            ("top tension", &a.top_tension, &b.top_tension),
+            ("payout rate", &a.payout_rate, &b.payout_rate),
+            ("sag moment", &a.sag_moment, &b.sag_moment),
+            ("touchdown", &a.touchdown_x, &b.touchdown_x),
+        ] {
+            assert_eq!(bits(x), bits(y), "{name}: {what}");
+        }
+        assert_eq!(bits(&one.nodes.as_laid), bits(&two.nodes.as_laid), "{name}");
+        assert_eq!(one.histories, two.histories, "{name}: seabed histories");
+        assert_eq!(bits(&one.friction.0), bits(&two.friction.0), "{name}");
+        assert_eq!(
+            (
+                one.steps,
+                one.iterations,
+                one.cuts,
+                one.windows,
+                one.taken_back
+            ),
+            (
+                two.steps,
+                two.iterations,
+                two.cuts,
+                two.windows,
+                two.taken_back
+            ),
+            "{name}"
+        );
+        taken_back += one.taken_back;
+        println!(
+            "{name}: {} steps, {} iterations, {} window moves, {} taken back: the same bits on one thread and two",
+            one.steps, one.iterations, one.windows, one.taken_back
+        );
+    }
+    assert!(taken_back > 0, "no pipe taken back onto the tower");
 }

@@ -43,6 +43,7 @@ pub fn json(r: &LayRun) -> Value {
         "window_nodes_mean": num(mean(&r.records.window_nodes)),
         "nodes": r.full.nodes(),
         "wall_seconds": num(r.wall_seconds),
+        "stepping_threads": r.stepping_threads,
         "installation_check": r.installation.as_ref().map(|c| json!({
             "code": c.spec.code.name(),
             "lcc_max": num(c.lcc_max.0),
@@ -112,14 +113,16 @@ pub fn text(r: &LayRun) -> String {
     );
     let _ = writeln!(
         t,
-        "  {} steps, {} iterations, {} cuts; the window moved {} times, {:.0} of {} nodes in the solve on average; {:.2} s",
+        "  {} steps, {} iterations, {} cuts; the window moved {} times, {:.0} of {} nodes in the solve on average; {:.2} s, stepped on {} thread{}",
         r.steps,
         r.iterations,
         r.cuts,
         r.windows,
         mean(&r.records.window_nodes),
         r.full.nodes(),
-        r.wall_seconds
+        r.wall_seconds,
+        r.stepping_threads,
+        if r.stepping_threads == 1 { "" } else { "s" }
     );
     if let Some(c) = &r.installation {
         let _ = writeln!(

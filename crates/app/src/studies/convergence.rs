@@ -389,7 +389,12 @@ fn run_variant(
         .map(|e| e.l0)
         .fold(f64::INFINITY, f64::min);
     if vscene.lay.is_some() {
-        return lay_variant(vscene, (mesh_factor, dt_factor), (elements, min_el));
+        return lay_variant(
+            vscene,
+            (mesh_factor, dt_factor),
+            (elements, min_el),
+            threads,
+        );
     }
     let t0 = Instant::now();
     // The runs side by side share the cores (`schedule::threads_per_run`).
@@ -423,10 +428,17 @@ fn lay_variant(
     vscene: RiserScene,
     (mesh_factor, dt_factor): (f64, f64),
     (elements, min_element_length): (usize, f64),
+    threads: usize,
 ) -> Result<VariantRun, AppError> {
     let scene_text = vscene.text.clone();
     let t0 = Instant::now();
-    let r = run::lay::simulate_lay(vscene, &mut |_| true)?;
+    // The lays side by side share the cores, as the runs do.
+    let st = run::statics::solve(run::lay::statics_scene(vscene))?;
+    let opts = run::lay::LayOptions {
+        threads: Some(threads),
+        ..Default::default()
+    };
+    let r = run::lay::lay_with(st, opts, &mut |_| true)?;
     let wall = t0.elapsed().as_secs_f64();
     let s = &r.summary;
     let values = if r.stop.is_none() {

@@ -39,6 +39,7 @@ pub fn run_lay(
             .map(|every| (out.join("checkpoint.json"), every)),
         restart,
         stop_after: opts.stop_after,
+        threads: opts.threads,
     };
     let mut last_shown = 0.0;
     let mut on_step = |p: &lay::LayProgress| {

@@ -312,7 +312,7 @@ impl Pair {
     /// Starts the second thread from `state`, and makes `ws` (the calling thread's) step the first
     /// part. `None` when the line is not cut in parts (a band factorised top-down: lines of fewer
     /// than [`crate::sparse::TWIST_MIN`] equations). The Model must not change while the pair
-    /// steps ([`Pair::stop`] first).
+    /// steps ([`Pair::stop`] first), but through [`Pair::change_model`].
     pub fn start(
         dm: &DynamicModel,
         state: &DynState,
@@ -398,6 +398,16 @@ impl Pair {
             .take_element_results(&w.ws.asm, k + 1..dm.line.elements.len());
         debug_assert_eq!(outcome, w.outcome);
         outcome
+    }
+
+    /// Changes the second thread's copy of the Model, and its Workspace, between steps, as
+    /// `change` changes the caller's: the one change allowed while the pair steps (the lay's top
+    /// motion, vessel and top element's rest length, set for each step). Call it with the same
+    /// change as the caller's Model and Workspace get: a Model that differs anywhere may take
+    /// other decisions (the residual's floor sums over every element).
+    pub fn change_model(&mut self, change: impl FnOnce(&mut DynamicModel, &mut DynWorkspace)) {
+        let w = &mut *self.partner.work();
+        change(&mut w.dm, &mut w.ws);
     }
 
     /// The solver memory of the pair ([`DynWorkspace::solver_memory`]): the first side's with the

@@ -54,6 +54,7 @@ pub mod install;
 pub mod laid;
 mod mesh;
 mod result;
+mod stepping;
 pub mod window;
 
 pub use mesh::statics_scene;
@@ -63,9 +64,8 @@ pub use result::{LayDown, LayProgress, LayRun};
 use std::time::Instant;
 
 use catena_fe::assembly::{LineResults, Placement};
-use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel, StepError};
+use catena_fe::dynamics::{self, DynState, DynWorkspace, DynamicModel};
 use catena_fe::model::LineModel;
-use catena_fe::motion::TopMotion;
 
 use crate::error::AppError;
 use crate::run::observe::Stop;
@@ -97,6 +97,9 @@ pub struct LayOptions {
     pub restart: Option<(checkpoint::LayCheckpoint, String)>,
     /// Stop (successfully) after this many steps, e.g. to end a job at a checkpoint.
     pub stop_after: Option<u64>,
+    /// The threads the lay may keep busy (`None`: the machine's cores): from two, the window is
+    /// stepped by a [`catena_fe::dynamics::Pair`], the same bits as on one.
+    pub threads: Option<usize>,
 }
 
 /// Lays the pipe of a solved lay scene (see [`statics_scene`]); `on_step` sees every converged
@@ -121,7 +124,11 @@ pub fn lay_with(
     }
     l.checkpoint_to = opts.checkpoint;
     l.stop_after = opts.stop_after;
-    let stop = l.run_until(l.dspec.duration, on_step)?;
+    l.stepping.threads = opts.threads.unwrap_or_else(crate::run::default_threads);
+    let stop = l.run_until(l.dspec.duration, on_step);
+    let stepping_threads = 1 + usize::from(l.stepping.pair.is_some());
+    l.unpair();
+    let stop = stop?;
     l.finish();
     let summary = l.summary(&st);
     let warnings = Vec::new();
@@ -145,6 +152,7 @@ pub fn lay_with(
         cuts: l.cuts,
         windows: l.windows,
         taken_back: l.taken_back,
+        stepping_threads,
         nodes: l.nodes,
         full: l.full,
         summary,
@@ -220,6 +228,8 @@ pub struct Lay {
     scene_hash: String,
     /// The frames for the animation.
     frames: frames::LayFrames,
+    /// The threads the window is stepped on ([`stepping`]).
+    stepping: stepping::Stepping,
 }
 
 impl Lay {
@@ -239,7 +249,6 @@ impl Lay {
             .dynamic
             .clone()
             .ok_or_else(|| fail("key `dynamic`: expected a [dynamic] table".into()))?;
-        let top = st.model.elements[0];
         let (full, o, pipe_end) = material_mesh(&st.model, &spec);
         let theta0 = st.placement.base[2] + st.u[2];
         // The static top's angle from the downward vertical (the line runs to −x from the top).
@@ -252,7 +261,7 @@ impl Lay {
             + ((down - theta0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
                 - std::f64::consts::PI);
         let exit0: [f64; 2] = std::array::from_fn(|c| st.placement.base[c] + st.u[c]);
-        let tension = st.results.tension[0];
+        let (tension, top) = (st.results.tension[0], st.model.elements[0]);
         let eps = tension / top.section.ea;
         // The base: the tower's nodes along the tower above the exit (each element stretched by
         // the top's strain), the line's where the statics' seed put them.
@@ -369,6 +378,7 @@ impl Lay {
             scene_hash: crate::scene::text_hash(&scene.text),
             frames: frames::LayFrames::new(records),
             full,
+            stepping: Default::default(),
         };
         l.mark_positions();
         l.record();
@@ -485,6 +495,7 @@ impl Lay {
     ) -> Result<Option<Stop>, AppError> {
         let dt = self.dspec.dt;
         let duration = self.dspec.duration;
+        self.pair_up()?;
         while self.state.t < t_end - 1e-6 * dt {
             if self.spec.length.is_some_and(|len| self.paid >= len - 1e-9) {
                 break;
@@ -532,6 +543,10 @@ impl Lay {
             self.full_steps += 1;
             if let Some((path, every)) = &self.checkpoint_to {
                 if self.full_steps % every == 0 {
+                    // The whole tangent in the solver's memory (its second side's columns).
+                    if let Some(p) = &self.stepping.pair {
+                        p.solver_memory(&mut self.ws);
+                    }
                     self.checkpoint().write(path)?;
                 }
             }
@@ -540,40 +555,6 @@ impl Lay {
             }
         }
         Ok(None)
-    }
-
-    /// One step of the lay: the top's motion for the step, the step, the payout.
-    fn step(&mut self, dt: f64) -> Result<(), StepError> {
-        let rate = self.payout_rate(dt);
-        let speed = self.vessel_speed_at(self.state.t + 0.5 * dt);
-        let s = rate * (1.0 + self.eps);
-        let t = self.state.t;
-        // The vessel meets the waves where it is: its RAO origin moves with it over the step.
-        if let (Some(v), Some(start)) = (&mut self.dm.vessel, &self.dspec.vessel) {
-            v.track(start.origin_x + self.vessel_x, t, speed);
-        }
-        let (d0, vel) = self.top_motion(speed, s, dt);
-        // Linear over the step (the series' last point beyond it, so that the velocity at the
-        // step's end is the step's).
-        self.dm.motion = Some(TopMotion::Series(vec![
-            (t, d0[0], d0[1]),
-            (
-                t + 2.0 * dt,
-                d0[0] + 2.0 * dt * vel[0],
-                d0[1] + 2.0 * dt * vel[1],
-            ),
-        ]));
-        let info = dynamics::advance(&self.dm, &mut self.state, &mut self.ws, dt)?;
-        self.iterations += info.iterations;
-        self.cuts += info.cuts;
-        self.vessel_x += speed * dt;
-        self.paid += rate * dt;
-        self.d_top -= s * dt;
-        self.rate = rate;
-        dynamics::results(&self.dm, &self.state, &self.ws, &mut self.res);
-        self.tension = self.exit_tension();
-        self.measured += (self.tension - self.measured) * (dt / TENSION_FILTER).min(1.0);
-        Ok(())
     }
 
     /// The installation check of the step's free span (nothing without a `[design_check]`).
@@ -679,6 +660,7 @@ impl Lay {
 
     /// Makes the window `first..=last` from the store.
     fn rewindow(&mut self, first: usize, last: usize) -> Result<(), AppError> {
+        self.unpair();
         let grid = self.state.wave_grid.take();
         let old_first = self.first;
         let mut state = self.store.window_state(
@@ -710,7 +692,7 @@ impl Lay {
         self.res.tension[0] = self.tension;
         self.windows += 1;
         self.mark_positions();
-        Ok(())
+        self.pair_up()
     }
 
     /// The touchdown point in the window: `(x, arc from the pipe's last end)`, interpolated

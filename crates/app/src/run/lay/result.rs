@@ -49,6 +49,9 @@ pub struct LayRun {
     pub windows: u64,
     /// Times a node was taken back onto the tower (paid in).
     pub taken_back: u64,
+    /// The threads that stepped the window: 2 where a [`catena_fe::dynamics::Pair`] did
+    /// ([`super::LayOptions::threads`]), else 1.
+    pub stepping_threads: usize,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
     /// Why the lay ended early, if it did.

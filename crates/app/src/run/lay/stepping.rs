@@ -1,0 +1,115 @@
+//! A lay's step, and the threads its window is stepped on.
+//!
+//! **A step** sets the top's motion for the step (the vessel's track over the waves, the top moving
+//! down the tower or held at the exit, the top element's rest length there: [`super::exit`]), steps
+//! the window, and pays out.
+//!
+//! **Two threads** ([`super::LayOptions::threads`] from 2): a [`Pair`] steps the window, each thread
+//! its part of it, to the same bits as one thread. The window's Model changes every step (the
+//! vessel's track, the top's motion, the top element's rest length at the exit); the second thread's
+//! copy gets the same changes ([`Pair::change_model`]), or its decisions could differ (the
+//! residual's floor sums over every element). The window itself changes when it moves
+//! ([`Lay::rewindow`](super::Lay)): the pair is stopped before and started again after, on the new
+//! window's Model and Workspace. A checkpoint takes the pair's whole solver memory. A lay writes
+//! its files at its end, so no writer keeps a thread while it steps: on two cores it steps on two.
+
+use catena_fe::dynamics::{self, DynamicModel, Pair, StepError};
+use catena_fe::motion::TopMotion;
+
+use super::exit::Top;
+use super::{Lay, TENSION_FILTER};
+use crate::error::AppError;
+
+/// The threads a window is stepped on.
+#[derive(Debug, Default)]
+pub(super) struct Stepping {
+    /// The threads the lay may keep busy ([`super::LayOptions::threads`]; 0 before it is set).
+    pub threads: usize,
+    /// The window's second stepping thread, where the lay has two ([`Lay::pair_up`]).
+    pub pair: Option<Pair>,
+}
+
+impl Lay {
+    /// One step of the lay: the top's motion for the step, the step, the payout.
+    pub(super) fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        let rate = self.payout_rate(dt);
+        let speed = self.vessel_speed_at(self.state.t + 0.5 * dt);
+        let s = rate * (1.0 + self.eps);
+        let t = self.state.t;
+        // The vessel meets the waves where it is: its RAO origin moves with it over the step.
+        let origin = self
+            .dspec
+            .vessel
+            .as_ref()
+            .map(|v| v.origin_x + self.vessel_x);
+        let track = |dm: &mut DynamicModel| {
+            if let (Some(v), Some(x)) = (&mut dm.vessel, origin) {
+                v.track(x, t, speed);
+            }
+        };
+        track(&mut self.dm);
+        let (d0, vel) = self.top_motion(speed, s, dt);
+        // At the exit, `top_motion` set the top element's rest length for the step.
+        let top_l0 = (self.top() == Top::Exit).then(|| self.dm.line.elements[0].l0);
+        // Linear over the step (the series' last point beyond it, so that the velocity at the
+        // step's end is the step's).
+        let motion = |dm: &mut DynamicModel| {
+            dm.motion = Some(TopMotion::Series(vec![
+                (t, d0[0], d0[1]),
+                (
+                    t + 2.0 * dt,
+                    d0[0] + 2.0 * dt * vel[0],
+                    d0[1] + 2.0 * dt * vel[1],
+                ),
+            ]));
+        };
+        motion(&mut self.dm);
+        let info = match &mut self.stepping.pair {
+            Some(p) => {
+                // The second thread's Model changed as the caller's (a Model that differs takes
+                // other decisions: the residual's floor sums over every element).
+                p.change_model(|dm, ws| {
+                    track(dm);
+                    if let Some(l) = top_l0 {
+                        dm.line.set_top_rest_length(l);
+                        ws.top_rest_length_changed(&dm.line);
+                    }
+                    motion(dm);
+                });
+                p.advance(&self.dm, &mut self.state, &mut self.ws, dt)?
+            }
+            None => dynamics::advance(&self.dm, &mut self.state, &mut self.ws, dt)?,
+        };
+        self.iterations += info.iterations;
+        self.cuts += info.cuts;
+        self.vessel_x += speed * dt;
+        self.paid += rate * dt;
+        self.d_top -= s * dt;
+        self.rate = rate;
+        dynamics::results(&self.dm, &self.state, &self.ws, &mut self.res);
+        self.tension = self.exit_tension();
+        self.measured += (self.tension - self.measured) * (dt / TENSION_FILTER).min(1.0);
+        Ok(())
+    }
+
+    /// Starts the window's second stepping thread where the lay may keep two busy and the
+    /// window's band is cut in two ([`Pair::start`]); a window of its own each time it moves.
+    pub(super) fn pair_up(&mut self) -> Result<(), AppError> {
+        if self.stepping.threads >= 2 && self.stepping.pair.is_none() {
+            let pair = Pair::start(&self.dm, &self.state, &mut self.ws);
+            self.stepping.pair = pair.map_err(|e| AppError::Run {
+                file: self.file.clone(),
+                message: format!("could not start the lay's second thread: {e}"),
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Ends the window's second stepping thread, if there is one: the caller's State and
+    /// Workspace are whole (they are after every step).
+    pub(super) fn unpair(&mut self) {
+        if let Some(p) = self.stepping.pair.take() {
+            p.stop(&self.dm, &mut self.ws);
+        }
+    }
+}
