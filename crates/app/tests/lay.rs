@@ -15,6 +15,33 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
+/// The options of a lay stepped on one thread. The tests run side by side (cargo's test threads):
+/// two lays each stepped by a pair would keep four threads in lockstep on a 2-core machine (the
+/// tests took 119 s instead of 37). Two threads are tested where they are the point
+/// (`a_lay_on_two_threads_is_the_lay_on_one_to_the_bit`, the restart's checkpoint).
+fn on_one() -> lay::LayOptions {
+    lay::LayOptions {
+        threads: Some(1),
+        ..Default::default()
+    }
+}
+
+/// [`lay::lay`] on one thread ([`on_one`]).
+fn lay_on_one(
+    st: statics::StaticRun,
+    on_step: &mut dyn FnMut(&lay::LayProgress) -> bool,
+) -> Result<LayRun, catena::error::AppError> {
+    lay::lay_with(st, on_one(), on_step)
+}
+
+/// [`lay::simulate_lay`] on one thread ([`on_one`]).
+fn simulate_lay_on_one(
+    scene: RiserScene,
+    on_step: &mut dyn FnMut(&lay::LayProgress) -> bool,
+) -> Result<LayRun, catena::error::AppError> {
+    lay_on_one(statics::solve(lay::statics_scene(scene))?, on_step)
+}
+
 fn case(name: &str) -> String {
     std::fs::read_to_string(root().join("cases/lay").join(name)).expect("test data")
 }
@@ -30,7 +57,7 @@ fn scene_with_files(text: &str) -> RiserScene {
 }
 
 fn lay_of(text: &str) -> LayRun {
-    let r = lay::simulate_lay(scene(text), &mut |_| true).expect("lay");
+    let r = simulate_lay_on_one(scene(text), &mut |_| true).expect("lay");
     assert!(r.stop.is_none(), "the lay stopped: {:?}", r.stop);
     r
 }
@@ -206,7 +233,7 @@ fn as_laid_is_the_backbone_at_the_largest_force() {
 #[test]
 fn the_tensioner_holds_its_target_in_a_surge() {
     let text = case("jlay-12in-tension-surge.toml");
-    let r = lay::simulate_lay(
+    let r = simulate_lay_on_one(
         RiserScene::parse(
             "tension.toml",
             &text,
@@ -244,7 +271,7 @@ fn the_tensioner_holds_its_target_in_a_surge() {
 fn lay_case(name: &str) -> LayRun {
     let text = case(name);
     let dir = catena::scene::DirResolver::beside(&root().join("cases/lay/x.toml"));
-    let r = lay::simulate_lay(
+    let r = simulate_lay_on_one(
         RiserScene::parse(name, &text, &dir).expect("scene"),
         &mut |_| true,
     )
@@ -412,7 +439,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
         .replace("duration = 4500.0 ", "duration = 600.0 ");
     let scene = || scene_with_files(&text);
     let solve = || statics::solve(lay::statics_scene(scene())).expect("statics");
-    let whole = lay::lay(solve(), &mut |_| true).expect("lay");
+    let whole = lay_on_one(solve(), &mut |_| true).expect("lay");
     assert!(whole.stop.is_none());
     let path = std::env::temp_dir().join(format!("catena-lay-cp-{}.json", std::process::id()));
     let first = lay::lay_with(
@@ -444,7 +471,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             checkpoint: None,
             restart: Some((bent, "bent".into())),
             stop_after: None,
-            threads: None,
+            threads: Some(1),
         },
         &mut |_| true,
     )
@@ -666,13 +693,13 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
         .replace("duration = 6100.0", "duration = 400.0")
         .replace("[lay]\n", "[lay]\ntower_angle_deg = 18.0\n");
     let solve = || statics::solve(lay::statics_scene(scene(&text))).expect("statics");
-    let whole = lay::lay(solve(), &mut |_| true).expect("lay");
+    let whole = lay_on_one(solve(), &mut |_| true).expect("lay");
     let path = std::env::temp_dir().join(format!("catena-lay-tilted-{}.json", std::process::id()));
     let opts = |checkpoint, restart, stop_after| lay::LayOptions {
         checkpoint,
         restart,
         stop_after,
-        threads: None,
+        threads: Some(1),
     };
     let first = lay::lay_with(
         solve(),
@@ -741,7 +768,7 @@ fn the_lay_vessel_meets_the_waves_where_it_is() {
     let text = case("jlay-12in-hs2.toml")
         .replace("duration = 20100.0 ", "duration = 1000.0 ")
         .replace("speed = 0.025 ", "speed = 0.1 ");
-    let r = lay::simulate_lay(scene_with_files(&text), &mut |_| true).expect("lay");
+    let r = simulate_lay_on_one(scene_with_files(&text), &mut |_| true).expect("lay");
     assert!(r.stop.is_none(), "{:?}", r.stop);
     let vessel = r.dynamic.vessel.clone().expect("a vessel");
     let waves = r.dynamic.environment.waves.clone().expect("waves");

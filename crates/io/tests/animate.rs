@@ -144,7 +144,13 @@ fn a_lay_animates_following_its_touchdown() {
         .replace("duration = 6100.0", "duration = 1500.0");
     let scene = catena::scene::riser::RiserScene::parse("lay.toml", &text, &catena::scene::NoFiles)
         .expect("scene");
-    let lay = catena::run::lay::simulate_lay(scene, &mut |_| true).expect("lay");
+    // On one thread: the tests run side by side (a pair each would oversubscribe the cores).
+    let st = catena::run::statics::solve(catena::run::lay::statics_scene(scene)).expect("statics");
+    let one = catena::run::lay::LayOptions {
+        threads: Some(1),
+        ..Default::default()
+    };
+    let lay = catena::run::lay::lay_with(st, one, &mut |_| true).expect("lay");
     let dir = std::env::temp_dir().join(format!("catena-animate-lay-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     let h5 = dir.join("results.h5");
