@@ -90,8 +90,8 @@ def run(scene, progress=None, every: int = 100, threads: int = 0) -> Results:
 
     The interpreter lock is released while catena steps, so runs in several threads run in
     parallel. ``threads`` is the number of threads the run may keep busy (0: every core): from two,
-    the line is stepped on two threads where the scene allows it (not a pipe-lay run), with the same
-    results to the bit. Runs side by side in several Python threads should share the cores
+    the line (or a lay's window) is stepped on two threads where it is long enough to cut, with the
+    same results to the bit. Runs side by side in several Python threads should share the cores
     (``threads=1`` each on two cores): two threads stepping one line in lockstep slow down when
     they share a core with another. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
     times a second, and at the last step; Ctrl-C stops the run and raises ``KeyboardInterrupt``. A

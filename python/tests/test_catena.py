@@ -390,10 +390,15 @@ def test_a_lay_s_results_h5_opens_in_xarray(tmp_path):
 
 def test_a_lay_from_python_is_the_command_s(tmp_path):
     """`catena.run` on a lay scene returns `/lay`'s arrays under the names of results.h5, the same
-    bits as the `catena` command's, and summary.json's `lay`."""
+    bits as the `catena` command's, and summary.json's `lay`; on one thread or two (``threads``),
+    the same bits."""
     h5py = pytest.importorskip("h5py")
     case = ROOT / "cases" / "lay" / "jlay-12in-steady.toml"
-    r = catena.run(case)
+    r = catena.run(case, threads=2)
+    one = catena.run(case, threads=1)
+    assert (r.summary["lay"]["stepping_threads"], one.summary["lay"]["stepping_threads"]) == (2, 1)
+    for name in ["time", "top_tension", "as_laid_embedment", "x", "z", "frames/penetration"]:
+        np.testing.assert_array_equal(r[f"lay/{name}"], one[f"lay/{name}"])
     out = tmp_path / "out"
     cli("run", case, "--quiet", "--out", out)
     with h5py.File(out / "results.h5") as f:

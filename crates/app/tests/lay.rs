@@ -42,6 +42,23 @@ fn simulate_lay_on_one(
     lay_on_one(statics::solve(lay::statics_scene(scene))?, on_step)
 }
 
+/// Asserts that two lays' records (time, top tension, payout rate, touchdown, sag-bend moment) and
+/// as-laid embedment are the same to the bit; `what` names the comparison in a failure.
+fn assert_same_lay(a: &LayRun, b: &LayRun, what: &str) {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let (x, y) = (&a.records, &b.records);
+    for (name, p, q) in [
+        ("time", &x.time, &y.time),
+        ("top tension", &x.top_tension, &y.top_tension),
+        ("payout rate", &x.payout_rate, &y.payout_rate),
+        ("touchdown", &x.touchdown_x, &y.touchdown_x),
+        ("sag moment", &x.sag_moment, &y.sag_moment),
+        ("as-laid embedment", &a.nodes.as_laid, &b.nodes.as_laid),
+    ] {
+        assert_eq!(bits(p), bits(q), "{what}: {name} differs");
+    }
+}
+
 fn case(name: &str) -> String {
     std::fs::read_to_string(root().join("cases/lay").join(name)).expect("test data")
 }
@@ -492,21 +509,12 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
     )
     .expect("restarted lay");
     assert!(again.stop.is_none());
-    let same = |a: &[f64], b: &[f64]| {
-        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-    };
-    let (w, a) = (&whole.records, &again.records);
-    for (name, x, y) in [
-        ("time", &w.time, &a.time),
-        ("top tension", &w.top_tension, &a.top_tension),
-        ("payout rate", &w.payout_rate, &a.payout_rate),
-        ("touchdown", &w.touchdown_x, &a.touchdown_x),
-        ("sag moment", &w.sag_moment, &a.sag_moment),
-    ] {
-        assert!(same(x, y), "{name} differs after the restart");
-    }
-    assert!(same(&whole.nodes.as_laid, &again.nodes.as_laid));
-    assert!(same(&whole.nodes.max_contact, &again.nodes.max_contact));
+    assert_same_lay(&whole, &again, "after the restart");
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(
+        bits(&whole.nodes.max_contact),
+        bits(&again.nodes.max_contact)
+    );
     assert_eq!(whole.nodes.episodes, again.nodes.episodes);
     assert_eq!(whole.window, again.window);
     assert!(!whole.frames.is_empty());
@@ -517,7 +525,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
     );
     println!(
         "{} records, {} window moves, {:.3} m paid out: the same bits",
-        w.time.len(),
+        whole.records.time.len(),
         whole.windows,
         whole.summary.paid_out
     );
@@ -717,13 +725,8 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
     )
     .expect("restarted lay");
     assert!(whole.stop.is_none() && again.stop.is_none());
-    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    let (w, a) = (&whole.records, &again.records);
     assert!(whole.windows >= 20, "{} window moves", whole.windows);
-    assert_eq!(bits(&w.top_tension), bits(&a.top_tension));
-    assert_eq!(bits(&w.sag_moment), bits(&a.sag_moment));
-    assert_eq!(bits(&w.touchdown_x), bits(&a.touchdown_x));
-    assert_eq!(bits(&whole.nodes.as_laid), bits(&again.nodes.as_laid));
+    assert_same_lay(&whole, &again, "after the restart");
 }
 
 /// `[lay.wire] station_height` is read: the station lay-down held from 40 m (the key) stops the
@@ -976,18 +979,8 @@ fn a_lay_on_two_threads_is_the_lay_on_one_to_the_bit() {
             "{name}"
         );
         assert!(one.windows >= 5, "{name}: {} window moves", one.windows);
+        assert_same_lay(&one, &two, name);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        let (a, b) = (&one.records, &two.records);
-        for (what, x, y) in [
-            ("time", &a.time, &b.time),
-            ("top tension", &a.top_tension, &b.top_tension),
-            ("payout rate", &a.payout_rate, &b.payout_rate),
-            ("sag moment", &a.sag_moment, &b.sag_moment),
-            ("touchdown", &a.touchdown_x, &b.touchdown_x),
-        ] {
-            assert_eq!(bits(x), bits(y), "{name}: {what}");
-        }
-        assert_eq!(bits(&one.nodes.as_laid), bits(&two.nodes.as_laid), "{name}");
         assert_eq!(one.histories, two.histories, "{name}: seabed histories");
         assert_eq!(bits(&one.friction.0), bits(&two.friction.0), "{name}");
         assert_eq!(

@@ -236,7 +236,7 @@ fn run<'py>(
     threads: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     if scene.scene.lay.is_some() {
-        return run_lay(py, scene);
+        return run_lay(py, scene, threads);
     }
     let mut records = Records::new();
     let mut prog = Progress {
@@ -336,11 +336,20 @@ fn run<'py>(
 
 /// A lay (a scene with `[lay]`): `results.h5`'s `/lay` arrays under the same names (`lay/time`,
 /// `lay/as_laid_embedment`, …) and `summary.json` (with its `lay`). The interpreter is released
-/// while catena lays the pipe.
-fn run_lay<'py>(py: Python<'py>, scene: &PyScene) -> PyResult<Bound<'py, PyDict>> {
+/// while catena lays the pipe. `threads`: as [`run`]'s
+/// ([`catena::run::lay::LayOptions::threads`]: from two, each window is stepped on two threads,
+/// the same bits).
+fn run_lay<'py>(py: Python<'py>, scene: &PyScene, threads: usize) -> PyResult<Bound<'py, PyDict>> {
     let input = scene.scene.clone();
     let r = py
-        .detach(|| catena::run::lay::simulate_lay(input, &mut |_| true))
+        .detach(|| {
+            let st = catena::statics::solve(catena::run::lay::statics_scene(input))?;
+            let opts = catena::run::lay::LayOptions {
+                threads: run_threads(threads),
+                ..catena::run::lay::LayOptions::default()
+            };
+            catena::run::lay::lay_with(st, opts, &mut |_| true)
+        })
         .map_err(err)?;
     let arrays = PyDict::new(py);
     let rec = &r.records;

@@ -126,7 +126,7 @@ pub fn lay_with(
     l.stop_after = opts.stop_after;
     l.stepping.threads = opts.threads.unwrap_or_else(crate::run::default_threads);
     let stop = l.run_until(l.dspec.duration, on_step);
-    let stepping_threads = 1 + usize::from(l.stepping.pair.is_some());
+    let stepping_threads = l.stepping.most.max(1);
     l.unpair();
     let stop = stop?;
     l.finish();

@@ -49,8 +49,8 @@ pub struct LayRun {
     pub windows: u64,
     /// Times a node was taken back onto the tower (paid in).
     pub taken_back: u64,
-    /// The threads that stepped the window: 2 where a [`catena_fe::dynamics::Pair`] did
-    /// ([`super::LayOptions::threads`]), else 1.
+    /// The most threads that stepped a window: 2 where a [`catena_fe::dynamics::Pair`] did
+    /// ([`super::LayOptions::threads`]; a window too short to cut steps on one), else 1.
     pub stepping_threads: usize,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,

@@ -27,6 +27,9 @@ pub(super) struct Stepping {
     pub threads: usize,
     /// The window's second stepping thread, where the lay has two ([`Lay::pair_up`]).
     pub pair: Option<Pair>,
+    /// The most threads a window was stepped on so far (1 or 2): a window too short to cut
+    /// (a band of fewer than [`catena_fe::sparse::TWIST_MIN`] equations) steps on one.
+    pub most: usize,
 }
 
 impl Lay {
@@ -102,6 +105,8 @@ impl Lay {
                 message: format!("could not start the lay's second thread: {e}"),
             })?;
         }
+        let now = 1 + usize::from(self.stepping.pair.is_some());
+        self.stepping.most = self.stepping.most.max(now);
         Ok(())
     }
 
