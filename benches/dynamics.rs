@@ -51,6 +51,8 @@ fn bench(c: &mut Criterion) {
     g.bench_function("heave_bare_stepper_2t", |b| {
         b.iter(|| {
             let (spec, dm) = catena::run::prepare(&st).expect("dynamic model");
+            // Shared with the second thread during each step.
+            let dm = std::sync::Arc::new(dm);
             let mut ws = DynWorkspace::new(&dm.line).expect("ws");
             let mut s = dynamics::initial_state(&dm, &st.u, &mut ws);
             let mut pair = Pair::start(&dm, &s, &mut ws)
@@ -235,6 +237,8 @@ fn waves(c: &mut Criterion) {
 fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserScene) {
     const N: usize = 200;
     let (spec, dm, mut ws, state) = storm_at_120_s(scene);
+    // Shared with the second thread during each step.
+    let dm = std::sync::Arc::new(dm);
     let mut g = c.benchmark_group("storm_two_threads");
     g.sample_size(10);
     g.bench_function("storm23_200_steps_1t", |b| {

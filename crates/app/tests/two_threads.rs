@@ -96,6 +96,8 @@ fn edited_one_and_two(case: &str, edits: &[Edit], steps: usize) -> (u32, u32, us
         .expect("edits");
     let st = statics::solve(scene).expect("statics");
     let (spec, dm) = run::prepare(&st).expect("dynamic model");
+    // Shared with the second thread during each step.
+    let dm = std::sync::Arc::new(dm);
     let n = dm.line.nodes();
     let mut ws1 = DynWorkspace::new(&dm.line).expect("workspace");
     let mut ws2 = DynWorkspace::new(&dm.line).expect("workspace");

@@ -23,6 +23,7 @@ pub mod records;
 pub mod statics;
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::Instant;
 
 use catena_fe::assembly::LineResults;
@@ -236,6 +237,8 @@ pub fn run(
     opts: RunOptions,
 ) -> Result<DynamicRun, AppError> {
     let (spec, dm) = prepare(&statics)?;
+    // Shared with the second stepping thread during each step, when there is one.
+    let dm = Arc::new(dm);
     let t0 = Instant::now();
     let n = dm.line.nodes();
     let mut ws = DynWorkspace::new(&dm.line).map_err(|source| AppError::Solver {
@@ -300,6 +303,7 @@ pub fn run(
     each(&mut outputs, extra, |o| o.start(&ctx, &first, restarted))?;
     let mut stepper = Stepper {
         ctx: &ctx,
+        model: &dm,
         state: &mut state,
         ws: &mut ws,
         pair: pair.as_mut(),
@@ -329,7 +333,7 @@ pub fn run(
         steps: tally.steps,
         statics,
         spec,
-        model: dm,
+        model: Arc::unwrap_or_clone(dm),
         envelopes,
         gauges,
         top,
@@ -435,6 +439,8 @@ impl Tally {
 /// The stepping of a run: its Model and specification, State, Workspace, results and outputs.
 struct Stepper<'a, 'c> {
     ctx: &'c RunContext<'c>,
+    /// The Model (the context's), as the second stepping thread shares it.
+    model: &'c Arc<DynamicModel>,
     state: &'a mut dynamics::DynState,
     ws: &'a mut DynWorkspace,
     /// The second thread stepping the line's second part, when the run has one.
@@ -457,7 +463,7 @@ impl Stepper<'_, '_> {
         let n_steps = (spec.duration / spec.dt).round() as u64;
         for k in first..=n_steps {
             let step = match self.pair.as_deref_mut() {
-                Some(p) => p.advance(dm, self.state, self.ws, spec.dt),
+                Some(p) => p.advance(self.model, self.state, self.ws, spec.dt),
                 None => dynamics::advance(dm, self.state, self.ws, spec.dt),
             };
             let info = match step {

@@ -22,12 +22,21 @@
 //! handed over after each step ([`Pair::advance`]), so that the results and the observers read
 //! one whole State.
 //!
+//! **One Model.** The second thread reads the caller's Model, handed over with each step
+//! ([`Pair::advance`] takes it as an [`Arc`]; the second thread lets go of it before the step is
+//! done): a caller that changes its Model between steps (a lay: the vessel's track, the top's
+//! motion, the top element's rest length) changes it for both threads, and no stale copy can take
+//! other decisions (the residual's floor sums over every element). What a Workspace keeps of the
+//! top element ([`DynWorkspace::top_rest_length_changed`]) is the first part's alone: the cut is at
+//! least two nodes down the line.
+//!
 //! The water kinematics of a scene with waves are taken at each thread's own nodes (the loads
 //! read them there only): the samples on the wave grid too, from the committed State, so each
 //! node's samples are the same whichever thread takes them, and the second part's are handed
 //! over with its State.
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use crate::assembly::Part;
 use crate::newton::max_abs;
@@ -264,9 +273,11 @@ impl DynWorkspace {
     }
 }
 
-/// The second thread's side of a [`Pair`]: its copy of the Model and its own State and Workspace.
+/// The second thread's side of a [`Pair`]: the caller's Model during a step, and its own State and
+/// Workspace.
 struct Side {
-    dm: DynamicModel,
+    /// The caller's Model, from [`Pair::advance`] until the step is done.
+    dm: Option<Arc<DynamicModel>>,
     state: DynState,
     ws: DynWorkspace,
     dt: f64,
@@ -278,8 +289,13 @@ const ADVANCE: u8 = 1;
 
 fn serve(w: &mut Side, code: u8) {
     if code == ADVANCE {
+        // The caller's Model is let go of before the step is done (also if it panics), so that
+        // the caller may change it between steps.
         let step = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            advance(&w.dm, &mut w.state, &mut w.ws, w.dt)
+            let Some(dm) = w.dm.take() else {
+                unreachable!("Pair::advance hands its Model over with the step")
+            };
+            advance(&dm, &mut w.state, &mut w.ws, w.dt)
         }));
         match step {
             Ok(outcome) => {
@@ -311,8 +327,9 @@ impl std::fmt::Debug for Pair {
 impl Pair {
     /// Starts the second thread from `state`, and makes `ws` (the calling thread's) step the first
     /// part. `None` when the line is not cut in parts (a band factorised top-down: lines of fewer
-    /// than [`crate::sparse::TWIST_MIN`] equations). The Model must not change while the pair
-    /// steps ([`Pair::stop`] first), but through [`Pair::change_model`].
+    /// than [`crate::sparse::TWIST_MIN`] equations). The Model may change between steps (each
+    /// step hands it to both threads), but not its line's nodes and elements: for another line,
+    /// [`Pair::stop`] and start again.
     pub fn start(
         dm: &DynamicModel,
         state: &DynState,
@@ -335,8 +352,11 @@ impl Pair {
         let (mine, other) = seats(32);
         ws.enter(&dm.line, split, 0, mine);
         theirs.enter(&dm.line, split, 1, other);
+        // The top element and the top two nodes (what a Workspace keeps of a top rest length
+        // changed between steps) are the first part's.
+        debug_assert!(split.k >= 2, "the cut is at least two nodes down the line");
         let side = Side {
-            dm: dm.clone(),
+            dm: None,
             state: state.clone(),
             ws: theirs,
             dt: 0.0,
@@ -351,12 +371,14 @@ impl Pair {
         }
     }
 
-    /// [`advance`] on two threads: the same State and results to the bit. The second part's
-    /// nodes of the State, its lumped mass, seabed forces and element results are handed over to
-    /// `state` and `ws` afterwards, so that [`results`] reads the whole line.
+    /// [`advance`] on two threads: the same State and results to the bit. Both threads read `dm`
+    /// (the second lets go of it before the step is done: `Arc::get_mut` or `Arc::make_mut` change
+    /// it between steps without a copy). The second part's nodes of the State, its lumped mass,
+    /// seabed forces and element results are handed over to `state` and `ws` afterwards, so that
+    /// [`results`] reads the whole line.
     pub fn advance(
         &mut self,
-        dm: &DynamicModel,
+        dm: &Arc<DynamicModel>,
         state: &mut DynState,
         ws: &mut DynWorkspace,
         dt: f64,
@@ -366,6 +388,7 @@ impl Pair {
             // The caller may set the time between steps (to the step count times Δt).
             w.state.t = state.t;
             w.dt = dt;
+            w.dm = Some(Arc::clone(dm));
         }
         self.partner.ask(ADVANCE);
         let outcome = advance(dm, state, ws, dt);
@@ -398,16 +421,6 @@ impl Pair {
             .take_element_results(&w.ws.asm, k + 1..dm.line.elements.len());
         debug_assert_eq!(outcome, w.outcome);
         outcome
-    }
-
-    /// Changes the second thread's copy of the Model, and its Workspace, between steps, as
-    /// `change` changes the caller's: the one change allowed while the pair steps (the lay's top
-    /// motion, vessel and top element's rest length, set for each step). Call it with the same
-    /// change as the caller's Model and Workspace get: a Model that differs anywhere may take
-    /// other decisions (the residual's floor sums over every element).
-    pub fn change_model(&mut self, change: impl FnOnce(&mut DynamicModel, &mut DynWorkspace)) {
-        let w = &mut *self.partner.work();
-        change(&mut w.dm, &mut w.ws);
     }
 
     /// The solver memory of the pair ([`DynWorkspace::solver_memory`]): the first side's with the

@@ -291,13 +291,13 @@ impl super::Lay {
         let (first, last) = cp.window;
         (self.first, self.last) = (first, last);
         let top_l0 = self.top_rest_length(first);
-        self.dm = super::window::model(
+        self.dm = std::sync::Arc::new(super::window::model(
             &self.full,
             &self.base,
             (first, last, top_l0),
             (self.spec.tower, self.theta, first < self.pipe_end),
             &self.dspec,
-        );
+        ));
         cp.state.check_fits(&self.dm).map_err(bad)?;
         self.state = cp.state.clone();
         self.ws = catena_fe::dynamics::DynWorkspace::new(&self.dm.line).map_err(|source| {

@@ -102,7 +102,7 @@ impl Lay {
             Top::Exit => {
                 let d0 = [self.exit0[0] + self.vessel_x - b[0], self.exit0[1] - b[1]];
                 let l_end = self.exit_rest_length(self.first, self.d_top - s * dt);
-                self.dm.line.set_top_rest_length(l_end);
+                self.model_mut().line.set_top_rest_length(l_end);
                 self.ws.top_rest_length_changed(&self.dm.line);
                 (d0, [speed, 0.0])
             }

@@ -61,6 +61,7 @@ pub use mesh::statics_scene;
 use mesh::{material_mesh, station_height};
 pub use result::{LayDown, LayProgress, LayRun};
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use catena_fe::assembly::{LineResults, Placement};
@@ -180,7 +181,9 @@ pub struct Lay {
     on_vessel: usize,
     first: usize,
     last: usize,
-    dm: DynamicModel,
+    /// The window's Model, shared with its second stepping thread during a step (changed
+    /// between steps through [`Lay::model_mut`]).
+    dm: Arc<DynamicModel>,
     ws: DynWorkspace,
     state: DynState,
     res: LineResults,
@@ -347,7 +350,7 @@ impl Lay {
             on_vessel: o,
             first,
             last,
-            dm,
+            dm: Arc::new(dm),
             ws,
             state,
             res,
@@ -684,7 +687,7 @@ impl Lay {
             }
         })?;
         (self.first, self.last) = (first, last);
-        self.dm = dm;
+        self.dm = Arc::new(dm);
         self.ws = ws;
         self.state = state;
         self.res = LineResults::new(n);

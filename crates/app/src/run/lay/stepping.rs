@@ -6,17 +6,19 @@
 //!
 //! **Two threads** ([`super::LayOptions::threads`] from 2): a [`Pair`] steps the window, each thread
 //! its part of it, to the same bits as one thread. The window's Model changes every step (the
-//! vessel's track, the top's motion, the top element's rest length at the exit); the second thread's
-//! copy gets the same changes ([`Pair::change_model`]), or its decisions could differ (the
-//! residual's floor sums over every element). The window itself changes when it moves
+//! vessel's track, the top's motion, the top element's rest length at the exit): it is an [`Arc`]
+//! that both threads read during a step and only the lay changes between steps
+//! ([`Lay::model_mut`]), so the second thread never steps a stale copy (its decisions would
+//! differ: the residual's floor sums over every element). The window itself changes when it moves
 //! ([`Lay::rewindow`](super::Lay)): the pair is stopped before and started again after, on the new
 //! window's Model and Workspace. A checkpoint takes the pair's whole solver memory. A lay writes
 //! its files at its end, so no writer keeps a thread while it steps: on two cores it steps on two.
 
+use std::sync::Arc;
+
 use catena_fe::dynamics::{self, DynamicModel, Pair, StepError};
 use catena_fe::motion::TopMotion;
 
-use super::exit::Top;
 use super::{Lay, TENSION_FILTER};
 use crate::error::AppError;
 
@@ -45,42 +47,22 @@ impl Lay {
             .vessel
             .as_ref()
             .map(|v| v.origin_x + self.vessel_x);
-        let track = |dm: &mut DynamicModel| {
-            if let (Some(v), Some(x)) = (&mut dm.vessel, origin) {
-                v.track(x, t, speed);
-            }
-        };
-        track(&mut self.dm);
+        if let (Some(v), Some(x)) = (&mut self.model_mut().vessel, origin) {
+            v.track(x, t, speed);
+        }
         let (d0, vel) = self.top_motion(speed, s, dt);
-        // At the exit, `top_motion` set the top element's rest length for the step.
-        let top_l0 = (self.top() == Top::Exit).then(|| self.dm.line.elements[0].l0);
         // Linear over the step (the series' last point beyond it, so that the velocity at the
         // step's end is the step's).
-        let motion = |dm: &mut DynamicModel| {
-            dm.motion = Some(TopMotion::Series(vec![
-                (t, d0[0], d0[1]),
-                (
-                    t + 2.0 * dt,
-                    d0[0] + 2.0 * dt * vel[0],
-                    d0[1] + 2.0 * dt * vel[1],
-                ),
-            ]));
-        };
-        motion(&mut self.dm);
+        self.model_mut().motion = Some(TopMotion::Series(vec![
+            (t, d0[0], d0[1]),
+            (
+                t + 2.0 * dt,
+                d0[0] + 2.0 * dt * vel[0],
+                d0[1] + 2.0 * dt * vel[1],
+            ),
+        ]));
         let info = match &mut self.stepping.pair {
-            Some(p) => {
-                // The second thread's Model changed as the caller's (a Model that differs takes
-                // other decisions: the residual's floor sums over every element).
-                p.change_model(|dm, ws| {
-                    track(dm);
-                    if let Some(l) = top_l0 {
-                        dm.line.set_top_rest_length(l);
-                        ws.top_rest_length_changed(&dm.line);
-                    }
-                    motion(dm);
-                });
-                p.advance(&self.dm, &mut self.state, &mut self.ws, dt)?
-            }
+            Some(p) => p.advance(&self.dm, &mut self.state, &mut self.ws, dt)?,
             None => dynamics::advance(&self.dm, &mut self.state, &mut self.ws, dt)?,
         };
         self.iterations += info.iterations;
@@ -93,6 +75,12 @@ impl Lay {
         self.tension = self.exit_tension();
         self.measured += (self.tension - self.measured) * (dt / TENSION_FILTER).min(1.0);
         Ok(())
+    }
+
+    /// The window's Model, to change between steps: no thread reads it then (the second lets go
+    /// of it before a step is done), so it is changed in place, never copied.
+    pub(super) fn model_mut(&mut self) -> &mut DynamicModel {
+        Arc::make_mut(&mut self.dm)
     }
 
     /// Starts the window's second stepping thread where the lay may keep two busy and the
