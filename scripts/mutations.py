@@ -18,8 +18,11 @@ seconds to a quarter of a minute a mutation on 2 cores once each crate's first h
 
 Usage:
     python3 scripts/mutations.py [--check] [--write-doc] [NAME ...]
+    python3 scripts/mutations.py --doc-from LOG
       --check      only verify that every anchor applies (seconds)
       --write-doc  rewrite the table in validation/safety-net.md from this run
+      --doc-from   rewrite that table from the lines a whole run printed (CI's log): every
+                   mutation of scripts/mutations.toml must have its line there, caught
 """
 import argparse
 import json
@@ -122,13 +125,35 @@ def write_doc(rows):
     open(DOC, 'w').write(head + BEGIN + '\n' + '\n'.join(lines) + '\n' + END + tail)
 
 
+def rows_from_log(path, muts):
+    """The table's rows from the JSON lines a whole run printed in `path` (the last line of each
+    mutation counts); every mutation must be there and caught."""
+    seen = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith('{"mutation"'):
+                r = json.loads(line)
+                seen[r['mutation']] = r
+    missing = [m['name'] for m in muts if m['name'] not in seen]
+    if missing:
+        sys.exit(f'{path}: no line for {", ".join(missing)}')
+    uncaught = [m['name'] for m in muts if not seen[m['name']]['caught_by'] or seen[m['name']]['problems']]
+    if uncaught:
+        sys.exit(f'{path}: not caught (or broken) there: {", ".join(uncaught)}')
+    return [(m, seen[m['name']]['caught_by'], seen[m['name']]['seconds']) for m in muts]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--check', action='store_true')
     ap.add_argument('--write-doc', action='store_true')
+    ap.add_argument('--doc-from', metavar='LOG')
     ap.add_argument('names', nargs='*')
     a = ap.parse_args()
     muts = load()
+    if a.doc_from:
+        write_doc(rows_from_log(a.doc_from, muts))
+        return
     known = {m['name'] for m in muts}
     unknown = [n for n in a.names if n not in known]
     if unknown:
