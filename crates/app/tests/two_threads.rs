@@ -13,7 +13,7 @@ use catena::scene::edit::Edit;
 use catena::scene::DirResolver;
 use catena::statics;
 use catena_fe::assembly::LineResults;
-use catena_fe::dynamics::{self, DynState, DynWorkspace, Pair};
+use catena_fe::dynamics::{self, DynState, DynWorkspace, Pair, Samples};
 use catena_fe::wave_sampling::Sample;
 
 /// The bits of a list of numbers.
@@ -80,13 +80,19 @@ fn same_results(case: &str, k: usize, one: &LineResults, two: &LineResults) {
 
 /// Steps `case` `steps` times on one thread and on two; returns the step cuts and retries taken.
 fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
-    let (cuts, retries, _) = edited_one_and_two(case, &[], steps);
+    let (cuts, retries, ..) = edited_one_and_two(case, &[], steps, Samples::Own);
     (cuts, retries)
 }
 
-/// [`one_and_two`] on `case` with `edits`; also returns how many of the steps had a node out of
-/// the water at a wave kinematics sample.
-fn edited_one_and_two(case: &str, edits: &[Edit], steps: usize) -> (u32, u32, usize) {
+/// [`one_and_two`] on `case` with `edits`, the pair's wave samples shared as `samples` says; also
+/// returns how many of the steps had a node out of the water at a wave kinematics sample, and how
+/// many of the first part's nodes the second thread sampled.
+fn edited_one_and_two(
+    case: &str,
+    edits: &[Edit],
+    steps: usize,
+    samples: Samples,
+) -> (u32, u32, usize, usize) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../cases")
         .join(case);
@@ -103,9 +109,10 @@ fn edited_one_and_two(case: &str, edits: &[Edit], steps: usize) -> (u32, u32, us
     let mut ws2 = DynWorkspace::new(&dm.line).expect("workspace");
     let mut one = dynamics::initial_state(&dm, &st.u, &mut ws1);
     let mut two = dynamics::initial_state(&dm, &st.u, &mut ws2);
-    let mut pair = Pair::start(&dm, &two, &mut ws2)
+    let mut pair = Pair::start_with(&dm, &two, &mut ws2, samples)
         .expect("a thread")
         .unwrap_or_else(|| panic!("{case}: a line a pair steps"));
+    let lent = pair.lent_nodes(&ws2);
     let (mut r1, mut r2) = (LineResults::new(n), LineResults::new(n));
     let (mut cuts, mut retries, mut dry) = (0, 0, 0);
     for k in 1..=steps {
@@ -136,8 +143,8 @@ fn edited_one_and_two(case: &str, edits: &[Edit], steps: usize) -> (u32, u32, us
     );
     assert_eq!(m1.dt.to_bits(), m2.dt.to_bits());
     pair.stop(&dm, &mut ws2);
-    println!("{case}: {steps} steps, {cuts} cuts, {retries} retries, {dry} with a node out of the water: the same bits");
-    (cuts, retries, dry)
+    println!("{case}: {steps} steps, {cuts} cuts, {retries} retries, {dry} with a node out of the water, {lent} nodes sampled by the second thread for the first: the same bits");
+    (cuts, retries, dry, lent)
 }
 
 #[test]
@@ -176,18 +183,25 @@ fn two_threads_step_a_heaved_lazy_wave_as_one_to_the_bit() {
 }
 
 /// Waves, their kinematics taken at each thread's own nodes: storm 23's JONSWAP sea (400
-/// components) with the semi-submersible's RAO motion, its kinematics sampled on the time grid,
-/// exact at every step, and with the hang-off 1 m below the surface (nodes out of the water at a
-/// sample get their exact kinematics); and Airy's regular wave on a riser held still.
+/// components) with the semi-submersible's RAO motion, its kinematics sampled on the time grid
+/// (each thread sampling its own nodes, and the samples shared: the second thread sampling some
+/// of the first part's too), exact at every step, and with the hang-off 1 m below the surface
+/// (nodes out of the water at a sample get their exact kinematics); and Airy's regular wave on a
+/// riser held still.
 #[test]
 fn two_threads_step_waves_as_one_to_the_bit() {
     let storm = "scr1000/storm23.toml";
     let ramp = Edit::set("waves.ramp", 5.0);
-    edited_one_and_two(storm, std::slice::from_ref(&ramp), 300);
+    let (.., lent) = edited_one_and_two(storm, std::slice::from_ref(&ramp), 300, Samples::Own);
+    assert_eq!(lent, 0, "each thread samples its own nodes");
+    let (.., lent) = edited_one_and_two(storm, std::slice::from_ref(&ramp), 300, Samples::Shared);
+    // The second thread samples some of the first part's nodes (the surface is all in the first).
+    assert!(lent > 0, "no samples lent");
     let exact = Edit::set("waves.kinematics_interval", 0.0);
-    edited_one_and_two(storm, &[ramp.clone(), exact], 150);
+    let (.., lent) = edited_one_and_two(storm, &[ramp.clone(), exact], 150, Samples::Shared);
+    assert_eq!(lent, 0, "nothing to lend without samples");
     let above = Edit::set("ends.top_z", 999.0);
-    let (_, _, dry) = edited_one_and_two(storm, &[ramp, above], 300);
+    let (_, _, dry, _) = edited_one_and_two(storm, &[ramp, above], 300, Samples::Shared);
     assert!(dry > 0, "no node was ever out of the water");
     one_and_two("benchmarks/riser-airy-wave.toml", 300);
 }

@@ -80,7 +80,7 @@ mod workspace;
 use carry::at_rest;
 pub use carry::{carried_state, Carry};
 use mass::{add_mass_tangent, lump_mass, structural_mass};
-pub use pair::Pair;
+pub use pair::{Pair, Samples};
 use water::wave_kinematics;
 use workspace::friction_anchor_len;
 pub use workspace::DynWorkspace;

@@ -338,6 +338,28 @@ impl Waves {
         self.stretch_depth
     }
 
+    /// What a sample of the kinematics and jerk at depth `z` (up from the still water level, at a
+    /// time whose phases are already taken) costs, in about 3 ns: 5 for a node so deep that
+    /// nothing is evaluated, else 90 and two for each component summed there (see the truncation
+    /// in [`Waves::kinematics`]) and one for each component's phase (all of them where the
+    /// elevation is evaluated for stretching). Fitted to storm 23's samples at 1 to 900 m (within
+    /// 20 % from 1 to 400 m). A weight for sharing the samples between two threads
+    /// ([`crate::dynamics::Pair`]): it changes no value.
+    pub fn sampling_cost(&self, z: f64) -> f64 {
+        let z_up = z + 1.1 * self.eta_bound;
+        let above = |i: usize| self.cols.ln_tail[i] + self.cols.k[i] * z_up >= self.ln_tol;
+        let n = first_false(above, 0, self.components.len());
+        if n == 0 && z_up < 0.0 {
+            return 5.0;
+        }
+        let phases = if z >= -self.stretch_depth {
+            self.components.len()
+        } else {
+            n
+        };
+        90.0 + 2.0 * n as f64 + phases as f64
+    }
+
     /// The zeroth spectral moment of the components, `Σ a²/2`, m².
     pub fn m0(&self) -> f64 {
         self.components

@@ -22,19 +22,22 @@ pub(super) fn wave_kinematics(dm: &DynamicModel, state: &DynState, t: f64, ws: &
         scratch: &mut ws.wave_scratch,
         grid: &mut ws.grid_trial,
         grid_new: &mut ws.grid_new,
+        lane: ws.lane.as_mut(),
     };
     water_kinematics(waves, &dm.placement, env.water_level, state, t, &ws.u, out);
 }
 
 /// Where [`water_kinematics`] writes: at the nodes `nodes` (this thread's own: the loads it
 /// assembles read the kinematics at those only), their kinematics, the theory's scratch, and the
-/// new samples of the step (and whether it took any).
+/// new samples of the step (and whether it took any); on two threads, where this thread meets
+/// the other, to hand over the lent samples ([`Lane::lend_samples`]).
 pub(super) struct WaterOut<'a, S> {
     nodes: Range<usize>,
     kin: &'a mut [Option<Kinematics>],
     scratch: &'a mut S,
     grid: &'a mut KinematicsGrid,
     grid_new: &'a mut bool,
+    lane: Option<&'a mut super::pair::Lane>,
 }
 
 /// The water kinematics of any wave theory ([`WaveKinematics`]) at each node at `t`: evaluated at
@@ -83,8 +86,23 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
             s.resize(n, None); // sized once
         }
         let prev = state.wave_grid.as_ref();
-        let to = (&mut *out.grid, nodes.clone());
-        fill_interval(waves, (h, m), prev, at, to, out.scratch);
+        // On two threads the second also samples the first part's lent nodes, and the first
+        // does not (its own nodes on either side of them: none above, its last node below).
+        let lent = out.lane.as_ref().map_or(0..0, |l| l.lent.clone());
+        let ranges = match out.lane.as_ref().map(|l| l.side) {
+            Some(1) => [nodes.clone(), lent],
+            _ => [
+                nodes.start..lent.start.max(nodes.start),
+                lent.end.max(nodes.start)..nodes.end,
+            ],
+        };
+        for r in ranges.into_iter().filter(|r| !r.is_empty()) {
+            fill_interval(waves, (h, m), prev, at, (&mut *out.grid, r), out.scratch);
+        }
+        out.grid.index = m;
+        if let Some(l) = out.lane {
+            l.lend_samples(out.grid);
+        }
         *out.grid_new = true;
     }
     let grid = reuse.unwrap_or(out.grid);

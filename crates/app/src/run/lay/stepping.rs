@@ -11,12 +11,14 @@
 //! ([`Lay::model_mut`]), so the second thread never steps a stale copy (its decisions would
 //! differ: the residual's floor sums over every element). The window itself changes when it moves
 //! ([`Lay::rewindow`](super::Lay)): the pair is stopped before and started again after, on the new
-//! window's Model and Workspace. A checkpoint takes the pair's whole solver memory. A lay writes
+//! window's Model and Workspace, the wave samples shared between the threads
+//! ([`catena_fe::dynamics::Samples::Shared`]: the window's upper half, where the waves reach, is
+//! the first part). A checkpoint takes the pair's whole solver memory. A lay writes
 //! its files at its end, so no writer keeps a thread while it steps: on two cores it steps on two.
 
 use std::sync::Arc;
 
-use catena_fe::dynamics::{self, DynamicModel, Pair, StepError};
+use catena_fe::dynamics::{self, DynamicModel, Pair, Samples, StepError};
 use catena_fe::motion::TopMotion;
 
 use super::{Lay, TENSION_FILTER};
@@ -87,7 +89,9 @@ impl Lay {
     /// window's band is cut in two ([`Pair::start`]); a window of its own each time it moves.
     pub(super) fn pair_up(&mut self) -> Result<(), AppError> {
         if self.stepping.threads >= 2 && self.stepping.pair.is_none() {
-            let pair = Pair::start(&self.dm, &self.state, &mut self.ws);
+            // The second thread takes its share of the wave samples: the window's upper half,
+            // where the waves reach, is the first part (1.10× measured on the J-lay in Hs 2 m).
+            let pair = Pair::start_with(&self.dm, &self.state, &mut self.ws, Samples::Shared);
             self.stepping.pair = pair.map_err(|e| AppError::Run {
                 file: self.file.clone(),
                 message: format!("could not start the lay's second thread: {e}"),
