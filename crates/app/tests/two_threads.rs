@@ -197,6 +197,12 @@ fn two_threads_step_waves_as_one_to_the_bit() {
     let (.., lent) = edited_one_and_two(storm, std::slice::from_ref(&ramp), 300, Samples::Shared);
     // The second thread samples some of the first part's nodes (the surface is all in the first).
     assert!(lent > 0, "no samples lent");
+    // Newton given two iterations: steps cut in sub-steps, some taking new samples after the
+    // first sub-step (the lent nodes sampled from the State it committed).
+    let two_iterations = Edit::set("dynamic.max_iterations", 2);
+    let (cuts, ..) =
+        edited_one_and_two(storm, &[ramp.clone(), two_iterations], 300, Samples::Shared);
+    assert!(cuts > 0, "no step cut");
     let exact = Edit::set("waves.kinematics_interval", 0.0);
     let (.., lent) = edited_one_and_two(storm, &[ramp.clone(), exact], 150, Samples::Shared);
     assert_eq!(lent, 0, "nothing to lend without samples");

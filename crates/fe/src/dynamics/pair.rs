@@ -37,8 +37,9 @@
 //! (a riser's top). A pair started with [`Samples::Shared`] (a lay's) has the second thread also
 //! sample the first part's nodes `lent` (next to the cut, chosen at [`Pair::start_with`] so that
 //! each thread's samples cost about half, [`crate::waves::Waves::sampling_cost`]), from their
-//! committed State handed to it before each step, and hand their samples to the first thread at
-//! a meeting ([`Lane::lend_samples`]). Measured: a J-lay in Hs 2 m 1.10× faster on two threads; a
+//! committed State, which the first thread hands it at a meeting each time new samples are due
+//! ([`Lane::lend_state`]: also in a sub-step after a cut), and hand their samples to the first
+//! thread at another ([`Lane::lend_samples`]). Measured: a J-lay in Hs 2 m 1.10× faster on two threads; a
 //! storm's pair no faster (its second part's seabed makes up what the first's waves cost), so
 //! [`Pair::start`] has each thread sample its own nodes. Either way, the same bits.
 
@@ -138,6 +139,43 @@ pub(super) struct Lane {
 const SAMPLE_NUMBERS: usize = 7;
 
 impl Lane {
+    /// The meeting before the threads take new wave samples, where the first thread hands the
+    /// second the committed State (`u`, `v`, `a`) of the `lent` nodes, which only the first
+    /// commits: the second keeps it in its mail ([`Lane::lent_state`]) while it samples them. So
+    /// it samples from the State of the sub-step that needs the samples, also after a cut.
+    /// Nothing without lent nodes. Allocates nothing.
+    pub(super) fn lend_state(&mut self, state: &DynState) {
+        let dofs = 3 * self.lent.start..3 * self.lent.end;
+        let len = dofs.len();
+        if len == 0 {
+            return;
+        }
+        if self.side == 1 {
+            self.seat.exchange(&[], &mut self.mail[..3 * len]);
+            return;
+        }
+        for (to, from) in self
+            .mail
+            .chunks_exact_mut(len)
+            .zip([&state.u, &state.v, &state.a])
+        {
+            to.copy_from_slice(&from[dofs.clone()]);
+        }
+        self.seat.exchange(&self.mail[..3 * len], &mut []);
+    }
+
+    /// On the second thread after [`Lane::lend_state`], at a dof `j` of a lent node: its
+    /// committed `(u, v, a)`. `None` at any other dof.
+    #[inline]
+    pub(super) fn lent_state(&self, j: usize) -> Option<(f64, f64, f64)> {
+        let first = 3 * self.lent.start;
+        let len = 3 * self.lent.len();
+        let k = j
+            .checked_sub(first)
+            .filter(|&k| k < len && self.side == 1)?;
+        Some((self.mail[k], self.mail[len + k], self.mail[2 * len + k]))
+    }
+
     /// The meeting where the second thread hands the first the samples it took at the `lent`
     /// nodes (both grid times), after both have sampled: the first writes them into `grid`.
     /// Nothing without lent nodes. Allocates nothing.
@@ -479,17 +517,6 @@ impl Pair {
             w.state.t = state.t;
             w.dt = dt;
             w.dm = Some(Arc::clone(dm));
-            // The committed State of the nodes it samples for the first part.
-            let lent = ws.lane.as_ref().map_or(0..0, |l| l.lent.clone());
-            let dofs = 3 * lent.start..3 * lent.end;
-            let w = &mut *w;
-            for (to, from) in [
-                (&mut w.state.u, &state.u),
-                (&mut w.state.v, &state.v),
-                (&mut w.state.a, &state.a),
-            ] {
-                to[dofs.clone()].copy_from_slice(&from[dofs.clone()]);
-            }
         }
         self.partner.ask(ADVANCE);
         let outcome = advance(dm, state, ws, dt);

@@ -74,11 +74,22 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
     let m = grid_index(t, h);
     let reuse = state.wave_grid.as_ref().filter(|g| g.index == m);
     if reuse.is_none() {
-        // Node `i` at grid time `tm`, extrapolated from the committed State.
+        let mut lane = out.lane;
+        if let Some(l) = lane.as_deref_mut() {
+            l.lend_state(state);
+        }
+        // Node `i` at grid time `tm`, extrapolated from the committed State (on the second
+        // thread, a lent node's from the first's, [`super::pair::Lane::lent_state`]).
+        let lent_state = lane.as_deref();
         let (u, v, a) = (&state.u, &state.v, &state.a);
         let at = |tm: f64, i: usize| {
             let tau = tm - state.t;
-            let p = |j: usize| pl.base[j] + u[j] + tau * v[j] + 0.5 * tau * tau * a[j];
+            let p = |j: usize| {
+                let (u, v, a) = lent_state
+                    .and_then(|l| l.lent_state(j))
+                    .unwrap_or((u[j], v[j], a[j]));
+                pl.base[j] + u + tau * v + 0.5 * tau * tau * a
+            };
             (p(3 * i), p(3 * i + 1) - level)
         };
         let n = out.kin.len();
@@ -88,8 +99,8 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
         let prev = state.wave_grid.as_ref();
         // On two threads the second also samples the first part's lent nodes, and the first
         // does not (its own nodes on either side of them: none above, its last node below).
-        let lent = out.lane.as_ref().map_or(0..0, |l| l.lent.clone());
-        let ranges = match out.lane.as_ref().map(|l| l.side) {
+        let lent = lane.as_ref().map_or(0..0, |l| l.lent.clone());
+        let ranges = match lane.as_ref().map(|l| l.side) {
             Some(1) => [nodes.clone(), lent],
             _ => [
                 nodes.start..lent.start.max(nodes.start),
@@ -100,7 +111,7 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
             fill_interval(waves, (h, m), prev, at, (&mut *out.grid, r), out.scratch);
         }
         out.grid.index = m;
-        if let Some(l) = out.lane {
+        if let Some(l) = lane {
             l.lend_samples(out.grid);
         }
         *out.grid_new = true;
