@@ -303,7 +303,6 @@ pub fn run(
     each(&mut outputs, extra, |o| o.start(&ctx, &first, restarted))?;
     let mut stepper = Stepper {
         ctx: &ctx,
-        model: &dm,
         state: &mut state,
         ws: &mut ws,
         pair: pair.as_mut(),
@@ -439,8 +438,6 @@ impl Tally {
 /// The stepping of a run: its Model and specification, State, Workspace, results and outputs.
 struct Stepper<'a, 'c> {
     ctx: &'c RunContext<'c>,
-    /// The Model (the context's), as the second stepping thread shares it.
-    model: &'c Arc<DynamicModel>,
     state: &'a mut dynamics::DynState,
     ws: &'a mut DynWorkspace,
     /// The second thread stepping the line's second part, when the run has one.
@@ -463,7 +460,7 @@ impl Stepper<'_, '_> {
         let n_steps = (spec.duration / spec.dt).round() as u64;
         for k in first..=n_steps {
             let step = match self.pair.as_deref_mut() {
-                Some(p) => p.advance(self.model, self.state, self.ws, spec.dt),
+                Some(p) => p.advance(dm, self.state, self.ws, spec.dt),
                 None => dynamics::advance(dm, self.state, self.ws, spec.dt),
             };
             let info = match step {

@@ -10,6 +10,7 @@
 //! takes it back on restart ([`Observer::restore`]), so a restarted run's outputs cover the whole run.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use catena_fe::assembly::LineResults;
 use catena_fe::dynamics::{DynState, DynamicModel, StepInfo};
@@ -26,8 +27,8 @@ use crate::scene::riser::{DynamicSpec, Gauge};
 pub struct RunContext<'a> {
     /// The statics the run started from (scene, results).
     pub statics: &'a StaticRun,
-    /// The dynamic Model.
-    pub model: &'a DynamicModel,
+    /// The dynamic Model (in an `Arc`: a run's second stepping thread reads it too).
+    pub model: &'a Arc<DynamicModel>,
     /// The dynamic specification (duration, Δt, output interval, envelope start, placed gauges).
     pub spec: &'a DynamicSpec,
 }
