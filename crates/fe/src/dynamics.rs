@@ -470,9 +470,14 @@ fn attempt(
         &state.a[d.clone()],
     );
     sc.predict(start, careful, &mut ws.u[d]);
-    let top = dm.top_at(t1);
+    // The top end is prescribed by the thread whose part has it: not a pair's second (its reach
+    // starts at least two nodes down the line), which leaves the top's dofs as they were, never
+    // reading them, and does not take the vessel's motion.
+    let has_top = ws.scope.reach_dofs.start == 0;
+    let top = has_top.then(|| dm.top_at(t1)).flatten();
     // A top that holds its rotation turns with the vessel's pitch since the step's start.
-    let turns = dm.vessel.is_some()
+    let turns = has_top
+        && dm.vessel.is_some()
         && ws
             .constraints
             .iter()
