@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use catena_fe::dynamics::{self, DynWorkspace, Pair};
+use catena_fe::dynamics::{self, DynWorkspace, Pair, Samples};
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {
@@ -254,6 +254,20 @@ fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserS
         b.iter(|| {
             let mut s = state.clone();
             let mut pair = Pair::start(&dm, &s, &mut ws)
+                .expect("a thread")
+                .expect("a line in two parts");
+            for _ in 0..N {
+                pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+            }
+            pair.stop(&dm, &mut ws);
+            s
+        })
+    });
+    // The second thread also sampling the first part's nodes next to the cut (a lay's pair).
+    g.bench_function("storm23_200_steps_2t_shared", |b| {
+        b.iter(|| {
+            let mut s = state.clone();
+            let mut pair = Pair::start_with(&dm, &s, &mut ws, Samples::Shared)
                 .expect("a thread")
                 .expect("a line in two parts");
             for _ in 0..N {
