@@ -232,8 +232,8 @@ fn waves(c: &mut Criterion) {
 }
 
 /// Storm 23 on its fatigue mesh, 200 steps from 120 s on one thread and on two (a [`Pair`], each
-/// thread taking the water kinematics at its own nodes; started for each round, as the partner's
-/// State must start from the same State).
+/// thread sampling the waves at its own nodes, or the samples shared; started for each round, as
+/// the partner's State must start from the same State).
 fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserScene) {
     const N: usize = 200;
     let (spec, dm, mut ws, state) = storm_at_120_s(scene);
@@ -253,7 +253,7 @@ fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserS
     g.bench_function("storm23_200_steps_2t", |b| {
         b.iter(|| {
             let mut s = state.clone();
-            let mut pair = Pair::start(&dm, &s, &mut ws)
+            let mut pair = Pair::start_with(&dm, &s, &mut ws, Samples::Own)
                 .expect("a thread")
                 .expect("a line in two parts");
             for _ in 0..N {
@@ -263,7 +263,7 @@ fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserS
             s
         })
     });
-    // The second thread also sampling the first part's nodes next to the cut (a lay's pair).
+    // The second thread also sampling the first part's nodes next to the cut (`Pair::start`).
     g.bench_function("storm23_200_steps_2t_shared", |b| {
         b.iter(|| {
             let mut s = state.clone();

@@ -470,18 +470,12 @@ fn attempt(
         &state.a[d.clone()],
     );
     sc.predict(start, careful, &mut ws.u[d]);
-    // The top end is prescribed by the thread whose part has it: not a pair's second (its reach
-    // starts at least two nodes down the line), which leaves the top's dofs as they were, never
-    // reading them, and does not take the vessel's motion.
+    // Only the part with the top prescribes it (a pair's second never reads the top's dofs).
     let has_top = ws.scope.reach_dofs.start == 0;
     let top = has_top.then(|| dm.top_at(t1)).flatten();
     // A top that holds its rotation turns with the vessel's pitch since the step's start.
-    let turns = has_top
-        && dm.vessel.is_some()
-        && ws
-            .constraints
-            .iter()
-            .any(|c| c.by == boundary::Prescribed::TopRotation);
+    let rotates = |c: &boundary::Constraint| c.by == boundary::Prescribed::TopRotation;
+    let turns = has_top && dm.vessel.is_some() && ws.constraints.iter().any(rotates);
     let before = turns.then(|| dm.top_at(state.t).map_or(0.0, |s0| s0.pitch));
     let prescribed = top.map(|s| boundary::TopPrescribed::new(s, before));
     // The vessel turns the flexjoint's reference: its counter-clockwise rotation is −pitch.

@@ -34,14 +34,14 @@
 //! read them there only): the samples on the wave grid too, from the committed State, so each
 //! node's samples are the same whichever thread takes them, and the second part's are handed
 //! over with its State. The samples cost most near the surface, which is all in the first part
-//! (a riser's top). A pair started with [`Samples::Shared`] (a lay's) has the second thread also
-//! sample the first part's nodes `lent` (next to the cut, chosen at [`Pair::start_with`] so that
+//! (a riser's top). A pair started with [`Samples::Shared`] ([`Pair::start`]'s) has the second
+//! thread also sample the first part's nodes `lent` (next to the cut, chosen at [`Pair::start_with`] so that
 //! each thread's samples cost about half, [`crate::waves::Waves::sampling_cost`]), from their
 //! committed State, which the first thread hands it at a meeting each time new samples are due
 //! ([`Lane::lend_state`]: also in a sub-step after a cut), and hand their samples to the first
-//! thread at another ([`Lane::lend_samples`]). Measured: a J-lay in Hs 2 m 1.10× faster on two threads; a
-//! storm's pair no faster (its second part's seabed makes up what the first's waves cost), so
-//! [`Pair::start`] has each thread sample its own nodes. Either way, the same bits.
+//! thread at another ([`Lane::lend_samples`]). Measured against [`Samples::Own`] (each thread
+//! its own nodes): a J-lay in Hs 2 m 1.10× faster on two threads, storm 23's pair about 6 %
+//! (`benches/README.md`). Either way, the same bits.
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -437,7 +437,7 @@ pub enum Samples {
 
 impl Pair {
     /// Starts the second thread from `state`, and makes `ws` (the calling thread's) step the first
-    /// part; each thread samples the waves at its own nodes ([`Samples::Own`]). `None` when the
+    /// part; the wave samples are shared ([`Samples::Shared`]). `None` when the
     /// line is not cut in parts (a band factorised top-down: lines of fewer than
     /// [`crate::sparse::TWIST_MIN`] equations). The Model may change between steps (each step
     /// hands it to both threads), but not its line's nodes and elements: for another line,
@@ -447,7 +447,7 @@ impl Pair {
         state: &DynState,
         ws: &mut DynWorkspace,
     ) -> std::io::Result<Option<Self>> {
-        Self::start_with(dm, state, ws, Samples::Own)
+        Self::start_with(dm, state, ws, Samples::Shared)
     }
 
     /// [`Pair::start`], the wave samples shared as `samples` says (the nodes lent are chosen from

@@ -18,7 +18,7 @@
 
 use std::sync::Arc;
 
-use catena_fe::dynamics::{self, DynamicModel, Pair, Samples, StepError};
+use catena_fe::dynamics::{self, DynamicModel, Pair, StepError};
 use catena_fe::motion::TopMotion;
 
 use super::{Lay, TENSION_FILTER};
@@ -91,7 +91,7 @@ impl Lay {
         if self.stepping.threads >= 2 && self.stepping.pair.is_none() {
             // The second thread takes its share of the wave samples: the window's upper half,
             // where the waves reach, is the first part (1.10× measured on the J-lay in Hs 2 m).
-            let pair = Pair::start_with(&self.dm, &self.state, &mut self.ws, Samples::Shared);
+            let pair = Pair::start(&self.dm, &self.state, &mut self.ws);
             self.stepping.pair = pair.map_err(|e| AppError::Run {
                 file: self.file.clone(),
                 message: format!("could not start the lay's second thread: {e}"),
