@@ -35,13 +35,13 @@
 //! node's samples are the same whichever thread takes them, and the second part's are handed
 //! over with its State. The samples cost most near the surface, which is all in the first part
 //! (a riser's top). A pair started with [`Samples::Shared`] ([`Pair::start`]'s) has the second
-//! thread also sample the first part's nodes `lent` (next to the cut, chosen at [`Pair::start_with`] so that
-//! each thread's samples cost about half, [`crate::waves::Waves::sampling_cost`]), from their
-//! committed State, which the first thread hands it at a meeting each time new samples are due
-//! ([`Lane::lend_state`]: also in a sub-step after a cut), and hand their samples to the first
-//! thread at another ([`Lane::lend_samples`]). Measured against [`Samples::Own`] (each thread
-//! its own nodes): a J-lay in Hs 2 m 1.10× faster on two threads, storm 23's pair about 6 %
-//! (`benches/README.md`). Either way, the same bits.
+//! thread also sample the first part's nodes `lent` (next to the cut, chosen at
+//! [`Pair::start_with`] so that each thread's samples cost about half,
+//! [`crate::waves::Waves::sampling_cost`]), from their committed State, which the first thread
+//! hands it at a meeting each time new samples are due ([`Lane::lend_state`]: also in a sub-step
+//! after a cut), and hand their samples to the first thread at another ([`Lane::lend_samples`]).
+//! Measured against [`Samples::Own`] (each thread its own nodes): a J-lay in Hs 2 m 1.10× faster
+//! on two threads, storm 23's pair about 6 % (`benches/README.md`). Either way, the same bits.
 
 use std::ops::Range;
 use std::sync::Arc;
