@@ -250,33 +250,26 @@ fn two_threads_in_a_storm(c: &mut Criterion, scene: catena::scene::riser::RiserS
             s
         })
     });
-    g.bench_function("storm23_200_steps_2t", |b| {
-        b.iter(|| {
-            let mut s = state.clone();
-            let mut pair = Pair::start_with(&dm, &s, &mut ws, Samples::Own)
-                .expect("a thread")
-                .expect("a line in two parts");
-            for _ in 0..N {
-                pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
-            }
-            pair.stop(&dm, &mut ws);
-            s
-        })
-    });
-    // The second thread also sampling the first part's nodes next to the cut (`Pair::start`).
-    g.bench_function("storm23_200_steps_2t_shared", |b| {
-        b.iter(|| {
-            let mut s = state.clone();
-            let mut pair = Pair::start_with(&dm, &s, &mut ws, Samples::Shared)
-                .expect("a thread")
-                .expect("a line in two parts");
-            for _ in 0..N {
-                pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
-            }
-            pair.stop(&dm, &mut ws);
-            s
-        })
-    });
+    // Each thread sampling its own nodes, and the second also sampling the first part's nodes
+    // next to the cut (`Pair::start`'s).
+    for (name, samples) in [
+        ("storm23_200_steps_2t", Samples::Own),
+        ("storm23_200_steps_2t_shared", Samples::Shared),
+    ] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut s = state.clone();
+                let mut pair = Pair::start_with(&dm, &s, &mut ws, samples)
+                    .expect("a thread")
+                    .expect("a line in two parts");
+                for _ in 0..N {
+                    pair.advance(&dm, &mut s, &mut ws, spec.dt).expect("step");
+                }
+                pair.stop(&dm, &mut ws);
+                s
+            })
+        });
+    }
     g.finish();
 }
 

@@ -165,14 +165,13 @@ impl Lane {
     }
 
     /// On the second thread after [`Lane::lend_state`], at a dof `j` of a lent node: its
-    /// committed `(u, v, a)`. `None` at any other dof.
+    /// committed `(u, v, a)`. `None` at any other dof. (Not on the first thread: its mail holds
+    /// other numbers.)
     #[inline]
     pub(super) fn lent_state(&self, j: usize) -> Option<(f64, f64, f64)> {
         let first = 3 * self.lent.start;
         let len = 3 * self.lent.len();
-        let k = j
-            .checked_sub(first)
-            .filter(|&k| k < len && self.side == 1)?;
+        let k = j.checked_sub(first).filter(|&k| k < len)?;
         Some((self.mail[k], self.mail[len + k], self.mail[2 * len + k]))
     }
 

@@ -80,7 +80,7 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
         }
         // Node `i` at grid time `tm`, extrapolated from the committed State (on the second
         // thread, a lent node's from the first's, [`super::pair::Lane::lent_state`]).
-        let lent_state = lane.as_deref();
+        let lent_state = lane.as_deref().filter(|l| l.side == 1);
         let (u, v, a) = (&state.u, &state.v, &state.a);
         let at = |tm: f64, i: usize| {
             let tau = tm - state.t;
