@@ -73,13 +73,15 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         restart: Option<PathBuf>,
         /// Compress results.h5's float fields (shuffle + deflate, on the writer thread): "yes",
-        /// "no", or "auto" (when the records are decimated, output_interval > time_step; recording
-        /// every step, compression would slow the run).
+        /// "no", or "auto" (when the records are decimated, output_interval > time_step, and the
+        /// run has 3 threads or more: recording every step, or with fewer threads, compression
+        /// would slow the run).
         #[arg(long, value_name = "WHEN", default_value = "auto", value_parser = ["auto", "yes", "no"])]
         compress: String,
-        /// The threads the run may keep busy (default: the machine's cores), the HDF5 writer's
-        /// counted: from 3, the line is stepped on two threads (not yet in a pipe-lay run); the
-        /// fatigue damage is counted on a thread of its own where one is left.
+        /// The threads the run may keep busy (default: the machine's cores). The line is stepped
+        /// on two threads where two are left beside the HDF5 writer's (counted when it compresses
+        /// or records every step; a pipe-lay's window from 2); the fatigue damage is counted on a
+        /// thread of its own where one is left.
         /// The results are the same whatever the number; the plots have threads of their own.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,

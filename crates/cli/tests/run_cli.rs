@@ -290,6 +290,60 @@ fn rq_heave_text() -> String {
     )
 }
 
+/// Decimated records on two threads (issue 48): by default they stay uncompressed, so that the
+/// writer keeps no core busy and the line steps on two threads beside it; asked to compress, the
+/// writer keeps a core and the line steps on one; from three threads they are compressed and the
+/// line steps on two. The records are the same to the bit in all three.
+#[test]
+fn decimated_records_leave_two_threads_to_the_line() {
+    let dir = tmp("decimated-threads");
+    let case = dir.join("case.toml");
+    std::fs::write(
+        &case,
+        heave_text()
+            .edit("duration = 100.0", "duration = 2.0")
+            .edit("envelope_start = 50.0", "envelope_start = 0.0")
+            .edit(
+                "time_step = 0.05",
+                "time_step = 0.05\noutput_interval = 0.1",
+            ),
+    )
+    .expect("case");
+    let run = |name: &str, threads: usize, compress: Option<bool>| {
+        let out = dir.join(name);
+        let opts = RunCommandOptions {
+            threads: Some(threads),
+            compress,
+            ..RunCommandOptions::default()
+        };
+        commands::run(&case, &out, &opts).expect("runs");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
+                .expect("summary");
+        let stepping = summary["dynamic"]["stepping_threads"]
+            .as_u64()
+            .expect("threads");
+        let f = hdf5::File::open(out.join("results.h5")).expect("h5");
+        let ds = f.dataset("dynamic/bending_moment").expect("moment");
+        let packed = !ds.filters().is_empty();
+        let bits: Vec<u64> = ds
+            .read_raw::<f64>()
+            .expect("moment")
+            .iter()
+            .map(|x| x.to_bits())
+            .collect();
+        (stepping, packed, bits)
+    };
+    let (two, packed, bits) = run("two", 2, None);
+    assert_eq!((two, packed), (2, false), "two threads, by default");
+    assert_eq!(bits.len(), 21 * 401, "21 records of 401 nodes");
+    let (one, packed, asked) = run("asked", 2, Some(true));
+    assert_eq!((one, packed), (1, true), "two threads, compression asked");
+    let (three, packed, wide) = run("three", 3, None);
+    assert_eq!((three, packed), (2, true), "three threads, by default");
+    assert!(bits == asked && bits == wide, "the records differ");
+}
+
 fn tmp(name: &str) -> PathBuf {
     let p = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join("run_cli")

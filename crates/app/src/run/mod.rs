@@ -145,8 +145,9 @@ pub struct RunOptions {
     /// The carry must be of this scene's Model (the same line, mesh and seabed law).
     pub start: Option<dynamics::Carry>,
     /// The threads this run may keep busy. From 2 beside the threads its observers keep busy
-    /// ([`Observer::busy_threads`]: the HDF5 writer's), the line is stepped on two threads where
-    /// the scene allows it ([`dynamics::Pair`]; not yet in a pipe-lay run); the
+    /// ([`Observer::busy_threads`]: the HDF5 writer's, when it compresses or records every
+    /// step), the line is stepped on two threads where the scene allows it ([`dynamics::Pair`]; a
+    /// pipe-lay's window: [`crate::run::lay::LayOptions::threads`]); the
     /// fatigue damage is counted on a thread of its own ([`crate::run::observers::fatigue`])
     /// where one is left over, else on the stepping thread. `None` takes [`default_threads`]. A
     /// study running `jobs` runs side by side gives each

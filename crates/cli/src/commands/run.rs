@@ -41,12 +41,16 @@ pub struct RunCommandOptions {
 }
 
 /// Whether `results.h5`'s float fields are compressed when the user did not say: when the records
-/// are decimated (`output_interval` > `time_step`). Recording every step, the writer thread's
-/// deflate (about 100 MB/s of doubles on this machine, for a third off the file) cannot keep up
-/// with the run and would slow it (the heave benchmark 0.34 → 0.44 s); decimated, it runs alongside
-/// for nothing (Watchet: 15 → 7.8 MB, same run time).
-pub fn compress_by_default(spec: &catena::scene::riser::DynamicSpec) -> bool {
-    spec.output_every > 1
+/// are decimated (`output_interval` > `time_step`) and the run may keep three threads busy or more
+/// (`threads`, [`RunOptions::threads`]). Recording every step, the writer thread's deflate (about
+/// 100 MB/s of doubles on this machine, for a third off the file) cannot keep up with the run and
+/// would slow it (the heave benchmark 0.34 → 0.44 s). Decimated, it runs alongside for nothing
+/// where it has a core of its own (Watchet: 15 → 7.8 MB, same run time); with two threads or fewer
+/// the records stay uncompressed, so that the writer keeps no core busy and the line steps on two
+/// threads beside it ([`catena_io::h5::writer_keeps_core`]: storm 23 in 10.1–12.2 s against
+/// 13.9–15.0 s on one thread compressing, on two cores; `--compress yes` keeps the smaller file).
+pub fn compress_by_default(spec: &catena::scene::riser::DynamicSpec, threads: usize) -> bool {
+    spec.output_every > 1 && threads >= 3
 }
 
 /// `catena run CASE --out DIR`: statics then dynamics; `results.h5` streamed, `summary.json`
@@ -78,11 +82,13 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     });
     let mut old_file = None;
     let mut rec = if restart.is_some() && h5p.exists() {
-        Recorder::open(&h5p, st.model.nodes(), &gauge_names)?
+        Recorder::open(&h5p, &st, &gauge_names)?
     } else {
-        let compress = opts
-            .compress
-            .unwrap_or_else(|| st.scene.dynamic.as_ref().is_some_and(compress_by_default));
+        let threads = opts.threads.unwrap_or_else(run::default_threads);
+        let compress = opts.compress.unwrap_or_else(|| {
+            let dynamic = st.scene.dynamic.as_ref();
+            dynamic.is_some_and(|d| compress_by_default(d, threads))
+        });
         // A results file of an earlier run is moved aside and deleted on another thread: truncating
         // a large file in place costs the filesystem as long as a short run's statics.
         let old = set_aside(&h5p);

@@ -32,7 +32,10 @@
 //!   checkpoint and continues it.
 //! - `/dynamic/time`, `/dynamic/arc` and `/static/arc` are HDF5 dimension scales attached to every
 //!   field, series and per-node result ([`dimension_scales`]). The float fields are compressed
-//!   (shuffle + deflate 1) when asked, by default when the records are decimated.
+//!   (shuffle + deflate 1) when asked (`catena run` by default when the records are decimated and
+//!   the run has three threads or more). The writer keeps a core busy only when it compresses or
+//!   records every step ([`recorder::writer_keeps_core`]): else the run may step on two threads
+//!   beside it.
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
@@ -57,8 +60,8 @@ mod sink;
 pub use after::{write_design_check, write_fatigue, write_ranges};
 pub use lay::write_lay;
 pub use read::{read_animation, read_extreme_channels, Channel};
-pub use recorder::Recorder;
 use recorder::*;
+pub use recorder::{writer_keeps_core, Recorder};
 use sink::*;
 
 /// Maps an HDF5 error to an output error naming the file.

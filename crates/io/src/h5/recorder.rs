@@ -37,6 +37,20 @@ pub struct Recorder {
     pub(super) last_flush: Instant,
     /// Time the run's thread spent recording (buffering, handing over, waiting), s.
     pub(super) busy: f64,
+    /// Whether the writer keeps a core busy ([`Observer::busy_threads`]): it compresses the
+    /// records, or it writes one every step. Decimated and uncompressed, its work (a copy and a
+    /// write every few steps) fits in the gaps of a run stepped on two threads.
+    pub(super) keeps_core: bool,
+}
+
+/// Whether a writer keeps a core busy: it deflates the records, or it writes one at every step
+/// (`output_every` 1). Measured on two cores (`benches/README.md`, issue 48): storm 23 (a record
+/// every 10 steps) steps on two threads beside an uncompressed writer in 10.1–12.2 s against
+/// 13.9–15.0 s on one beside a compressing one, and loses to the one thread when its writer
+/// compresses; the heave benchmark (a record every step, 100 s) loses 10–20 % on two threads
+/// beside its writer.
+pub fn writer_keeps_core(compressed: bool, output_every: usize) -> bool {
+    compressed || output_every <= 1
 }
 
 /// The deflate level of the `/dynamic` fields (byte shuffle first). Level 1: the higher levels
@@ -95,9 +109,12 @@ impl Recorder {
             has_design,
             written: 0,
         };
+        let every = dynamic.map_or(1, |d| d.output_every);
         let (path_buf, statics, gauges) = (path.to_path_buf(), statics.clone(), gauges.to_vec());
         let init: Init = Box::new(move || Self::build_sink(&path_buf, &statics, &gauges, compress));
-        Self::with_writer(path, shape, Arc::new(Mutex::new(None)), Some(init))
+        let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(None)), Some(init))?;
+        rec.keeps_core = writer_keeps_core(compress, every);
+        Ok(rec)
     }
 
     fn build_sink(
@@ -215,12 +232,17 @@ impl Recorder {
         Self::sink_of(path, file, n, gauges)
     }
 
-    /// Opens an existing results file to continue its `/dynamic` records (a restart). Its state is
-    /// restored from the checkpoint before the run goes on ([`Observer::restore`]).
-    pub fn open(path: &Path, n: usize, gauges: &[String]) -> Result<Self, AppError> {
+    /// Opens an existing results file of `statics`' scene to continue its `/dynamic` records (a
+    /// restart), compressed as the file's fields are. Its state is restored from the checkpoint
+    /// before the run goes on ([`Observer::restore`]).
+    pub fn open(path: &Path, statics: &StaticRun, gauges: &[String]) -> Result<Self, AppError> {
         let file = hdf5::File::open_rw(path).map_err(h5err(path))?;
-        let (sink, shape) = Self::sink_of(path, file, n, gauges)?;
-        Self::with_writer(path, shape, Arc::new(Mutex::new(Some(sink))), None)
+        let (sink, shape) = Self::sink_of(path, file, statics.model.nodes(), gauges)?;
+        let compressed = sink.fields.iter().any(|f| !f.filters().is_empty());
+        let every = statics.scene.dynamic.as_ref().map_or(1, |d| d.output_every);
+        let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(Some(sink))), None)?;
+        rec.keeps_core = writer_keeps_core(compressed, every);
+        Ok(rec)
     }
 
     /// The datasets of a results file's `/dynamic` for `n` nodes and these gauges, and their shape.
@@ -373,6 +395,7 @@ impl Recorder {
             has_design,
             last_flush: Instant::now(),
             busy: 0.0,
+            keeps_core: true,
         })
     }
 
@@ -556,7 +579,7 @@ impl Observer for Recorder {
     }
 
     fn busy_threads(&self) -> usize {
-        usize::from(self.writer.is_some())
+        usize::from(self.writer.is_some() && self.keeps_core)
     }
 
     fn start(
