@@ -316,16 +316,24 @@ fn decimated_records_leave_two_threads_to_the_line() {
             compress,
             ..RunCommandOptions::default()
         };
-        commands::run(&case, &out, &opts).expect("runs");
+        let text = commands::run(&case, &out, &opts).expect("runs");
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("json"))
                 .expect("summary");
         let stepping = summary["dynamic"]["stepping_threads"]
             .as_u64()
             .expect("threads");
+        // The text says on how many threads the line stepped, and whether the writer compressed.
+        let plural = if stepping == 1 { "" } else { "s" };
+        assert!(
+            text.contains(&format!("s on {stepping} thread{plural} (")),
+            "{text}"
+        );
+        let compressing = text.contains("(writing and compressing ");
         let f = hdf5::File::open(out.join("results.h5")).expect("h5");
         let ds = f.dataset("dynamic/bending_moment").expect("moment");
         let packed = !ds.filters().is_empty();
+        assert_eq!(compressing, packed, "{text}");
         let bits: Vec<u64> = ds
             .read_raw::<f64>()
             .expect("moment")

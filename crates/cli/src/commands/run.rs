@@ -53,6 +53,30 @@ pub fn compress_by_default(spec: &catena::scene::riser::DynamicSpec, threads: us
     spec.output_every > 1 && threads >= 3
 }
 
+/// The text summary's line of where the time went: the statics, the dynamics (on how many threads
+/// the line stepped), the recording on the run's thread (`recording`: its seconds, the writer's
+/// alongside, and whether it compressed) and the outputs after the run.
+fn time_line(
+    r: &run::DynamicRun,
+    statics_seconds: f64,
+    (recording, writer, compressed): (f64, f64, bool),
+    outputs_seconds: f64,
+) -> String {
+    let threads = r.stepping_threads;
+    let writing = match compressed {
+        true => "writing and compressing",
+        false => "writing",
+    };
+    format!(
+        "  time: statics {statics_seconds:.3} s; dynamics {:.2} s on {threads} thread{} ({:.0} \
+         steps/s), of which recording {recording:.2} s ({writing} {writer:.2} s alongside, on its \
+         own thread); plots and summary {outputs_seconds:.2} s\n",
+        r.wall_seconds,
+        if threads == 1 { "" } else { "s" },
+        r.steps as f64 / r.wall_seconds.max(1e-9),
+    )
+}
+
 /// `catena run CASE --out DIR`: statics then dynamics; `results.h5` streamed, `summary.json`
 /// (also for a run that stopped: `"completed": false` and the reason), `static.png`,
 /// `dynamic.png`, `ranges.png` and, with gauges, `gauges.png`. A restart into the same DIR continues its
@@ -141,8 +165,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     )?;
     drop(extra);
     let records = rec.records();
-    let recording_seconds = rec.busy_seconds();
-    let writer_seconds = rec.writer_seconds();
+    let recording = (rec.busy_seconds(), rec.writer_seconds(), rec.compressed());
     let t_outputs = Instant::now();
     let js = out.join("summary.json");
     let (dynamic_canvas, ranges_canvas) = joined(static_plot.join(), out)?;
@@ -174,16 +197,7 @@ pub fn run(case: &Path, out: &Path, opts: &RunCommandOptions) -> Result<String, 
     }
     let outputs_seconds = t_outputs.elapsed().as_secs_f64();
     let mut t = report::dynamic_text(&r);
-    let _ = writeln!(
-        t,
-        "  time: statics {:.3} s; dynamics {:.2} s ({:.0} steps/s), of which recording {:.2} s (writing and compressing {:.2} s alongside, on its own thread); plots and summary {:.2} s",
-        statics_seconds,
-        r.wall_seconds,
-        r.steps as f64 / r.wall_seconds.max(1e-9),
-        recording_seconds,
-        writer_seconds,
-        outputs_seconds
-    );
+    t += &time_line(&r, statics_seconds, recording, outputs_seconds);
     let _ = writeln!(
         t,
         "  wrote {} ({} records), {}, plots in {}",

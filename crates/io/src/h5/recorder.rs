@@ -41,6 +41,8 @@ pub struct Recorder {
     /// records, or it writes one every step. Decimated and uncompressed, its work (a copy and a
     /// write every few steps) fits in the gaps of a run stepped on two threads.
     pub(super) keeps_core: bool,
+    /// Whether the float fields are stored deflated.
+    pub(super) compressed: bool,
 }
 
 /// Whether a writer keeps a core busy: it deflates the records, or it writes one at every step
@@ -114,6 +116,7 @@ impl Recorder {
         let init: Init = Box::new(move || Self::build_sink(&path_buf, &statics, &gauges, compress));
         let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(None)), Some(init))?;
         rec.keeps_core = writer_keeps_core(compress, every);
+        rec.compressed = compress;
         Ok(rec)
     }
 
@@ -242,6 +245,7 @@ impl Recorder {
         let every = statics.scene.dynamic.as_ref().map_or(1, |d| d.output_every);
         let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(Some(sink))), None)?;
         rec.keeps_core = writer_keeps_core(compressed, every);
+        rec.compressed = compressed;
         Ok(rec)
     }
 
@@ -396,6 +400,7 @@ impl Recorder {
             last_flush: Instant::now(),
             busy: 0.0,
             keeps_core: true,
+            compressed: false,
         })
     }
 
@@ -544,6 +549,11 @@ impl Recorder {
     /// Seconds the writer thread spent compressing, writing and flushing so far (alongside the run).
     pub fn writer_seconds(&self) -> f64 {
         lock(&self.sink).as_ref().map_or(0.0, |s| s.seconds)
+    }
+
+    /// Whether the float fields are stored deflated (asked, or `catena run`'s default).
+    pub fn compressed(&self) -> bool {
+        self.compressed
     }
 
     /// Records recorded so far (written, queued or buffered).
