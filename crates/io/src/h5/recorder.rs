@@ -37,12 +37,9 @@ pub struct Recorder {
     pub(super) last_flush: Instant,
     /// Time the run's thread spent recording (buffering, handing over, waiting), s.
     pub(super) busy: f64,
-    /// Whether the writer keeps a core busy ([`Observer::busy_threads`]): it compresses the
-    /// records, or it writes one every step. Decimated and uncompressed, its work (a copy and a
-    /// write every few steps) fits in the gaps of a run stepped on two threads.
-    pub(super) keeps_core: bool,
-    /// Whether the float fields are stored deflated.
-    pub(super) compressed: bool,
+    /// Whether the float fields are stored deflated, and the steps between records
+    /// (`output_every`): whether the writer keeps a core busy ([`writer_keeps_core`]).
+    pub(super) writes: (bool, usize),
 }
 
 /// Whether a writer keeps a core busy: it deflates the records, or it writes one at every step
@@ -114,10 +111,8 @@ impl Recorder {
         let every = dynamic.map_or(1, |d| d.output_every);
         let (path_buf, statics, gauges) = (path.to_path_buf(), statics.clone(), gauges.to_vec());
         let init: Init = Box::new(move || Self::build_sink(&path_buf, &statics, &gauges, compress));
-        let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(None)), Some(init))?;
-        rec.keeps_core = writer_keeps_core(compress, every);
-        rec.compressed = compress;
-        Ok(rec)
+        let (sink, writes) = (Arc::new(Mutex::new(None)), (compress, every));
+        Self::with_writer(path, (shape, writes), sink, Some(init))
     }
 
     fn build_sink(
@@ -243,10 +238,8 @@ impl Recorder {
         let (sink, shape) = Self::sink_of(path, file, statics.model.nodes(), gauges)?;
         let compressed = sink.fields.iter().any(|f| !f.filters().is_empty());
         let every = statics.scene.dynamic.as_ref().map_or(1, |d| d.output_every);
-        let mut rec = Self::with_writer(path, shape, Arc::new(Mutex::new(Some(sink))), None)?;
-        rec.keeps_core = writer_keeps_core(compressed, every);
-        rec.compressed = compressed;
-        Ok(rec)
+        let sink = Arc::new(Mutex::new(Some(sink)));
+        Self::with_writer(path, (shape, (compressed, every)), sink, None)
     }
 
     /// The datasets of a results file's `/dynamic` for `n` nodes and these gauges, and their shape.
@@ -311,11 +304,12 @@ impl Recorder {
         Ok((sink, shape))
     }
 
-    /// The recorder of a file of this shape, its writer thread started: the thread first builds the
-    /// datasets with `init` when they are not there yet (a new file), then takes the jobs in order.
+    /// The recorder of a file of this shape, written as `writes` says (compressed, the steps
+    /// between records), its writer thread started: the thread first builds the datasets with
+    /// `init` when they are not there yet (a new file), then takes the jobs in order.
     fn with_writer(
         path: &Path,
-        shape: Shape,
+        (shape, writes): (Shape, (bool, usize)),
         sink: Arc<Mutex<Option<Sink>>>,
         init: Option<Init>,
     ) -> Result<Self, AppError> {
@@ -399,8 +393,7 @@ impl Recorder {
             has_design,
             last_flush: Instant::now(),
             busy: 0.0,
-            keeps_core: true,
-            compressed: false,
+            writes,
         })
     }
 
@@ -553,7 +546,7 @@ impl Recorder {
 
     /// Whether the float fields are stored deflated (asked, or `catena run`'s default).
     pub fn compressed(&self) -> bool {
-        self.compressed
+        self.writes.0
     }
 
     /// Records recorded so far (written, queued or buffered).
@@ -589,7 +582,7 @@ impl Observer for Recorder {
     }
 
     fn busy_threads(&self) -> usize {
-        usize::from(self.writer.is_some() && self.keeps_core)
+        usize::from(self.writer.is_some() && writer_keeps_core(self.writes.0, self.writes.1))
     }
 
     fn start(
