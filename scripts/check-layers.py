@@ -5,6 +5,12 @@ For each crate under crates/, every `crate::m` (and, in a submodule, `super::m`)
 comments is an edge from the file's top-level module to `m`; a cycle among top-level modules is
 reported and the script exits 1. (Crates themselves cannot form cycles: cargo refuses them.)
 
+The same holds between files: a file's `crate::a::b`, `super::x` and `self::x` paths (braced
+`use` lists included) are edges to the files of the modules they name, and two files of one crate
+that reach each other (`dynamics/pair.rs` and `dynamics/workspace.rs`, say) are a cycle. Edges
+between a module and its own parent or child (`super::*`, `mod x; use x::Y`) are not counted: a
+parent declares its children, and a child reads what the parent re-exports.
+
 A crate whose folders are its layers declares their order in LAYERS, lowest first: a top-level
 module may then use only itself and the modules before it (`error`, shared by all, comes first),
 and a top-level module missing from the list fails the check, so a new folder has to take its
@@ -47,5 +53,65 @@ for crate in sorted(os.listdir(root)):
             for d in sorted(deps):
                 if d in order and order.index(d)>order.index(m):
                     print(crate,'layer:',m,'uses',d,'which is above it'); bad+=1
-print('check-layers: ' + ('%d problems' % bad if bad else 'no import cycle between modules, every layer uses only those below it'))
+
+def file_cycles(crate):
+    """The cycles among the files of `crate`, each as the list of its files' module paths."""
+    src=os.path.join(root,crate,'src')
+    files={}
+    for dp,_,fs in os.walk(src):
+        for f in fs:
+            if not f.endswith('.rs'): continue
+            p=os.path.join(dp,f); rel=os.path.relpath(p,src)[:-3].replace(os.sep,'::')
+            rel=rel.replace('::mod','')
+            if rel in ('lib','main'): rel=''
+            files[rel]=p
+    def resolve(base,segs):
+        """The deepest module file named by `base` then `segs`."""
+        best=base
+        path=base
+        for s in segs:
+            path=(path+'::'+s) if path else s
+            if path in files: best=path
+            else: break
+        return best
+    edges={m:set() for m in files}
+    for m,p in files.items():
+        txt='\n'.join(l for l in open(p).read().splitlines() if not l.strip().startswith('//'))
+        txt=re.sub(r'#\[cfg\(test\)\]\s*mod tests\s*\{.*','',txt,flags=re.S)
+        parent=m.rsplit('::',1)[0] if '::' in m else ''
+        for kw,base in (('crate',''),('super',parent),('self',m)):
+            for mm in re.finditer(kw+r'::((?:[a-z_][a-z0-9_]*::)*)(\{[^}]*\}|[A-Za-z_][A-Za-z0-9_]*)',txt):
+                head=[x for x in mm.group(1).split('::') if x]
+                tails=[mm.group(2)]
+                if tails[0].startswith('{'):
+                    tails=[t.strip() for t in tails[0][1:-1].split(',') if t.strip()]
+                for t in tails:
+                    segs=head+[x for x in t.split('::') if x and x!='*' and x!='self']
+                    d=resolve(base,segs)
+                    if d!=m: edges[m].add(d)
+    related=lambda a,b: a=='' or b=='' or a.startswith(b+'::') or b.startswith(a+'::')
+    for m in edges: edges[m]={d for d in edges[m] if not related(m,d)}
+    # Tarjan's strongly connected components.
+    index,low,stack,on,out=({},{},[],set(),[])
+    def visit(v):
+        index[v]=low[v]=len(index); stack.append(v); on.add(v)
+        for w in sorted(edges[v]):
+            if w not in index: visit(w); low[v]=min(low[v],low[w])
+            elif w in on: low[v]=min(low[v],index[w])
+        if low[v]==index[v]:
+            comp=[]
+            while True:
+                w=stack.pop(); on.discard(w); comp.append(w)
+                if w==v: break
+            if len(comp)>1: out.append(sorted(comp))
+    sys.setrecursionlimit(10000)
+    for v in sorted(edges):
+        if v not in index: visit(v)
+    return out
+
+for crate in sorted(os.listdir(root)):
+    for comp in file_cycles(crate):
+        print(crate,'files that import each other:',', '.join(comp)); bad+=1
+
+print('check-layers: ' + ('%d problems' % bad if bad else 'no import cycle between modules or files, every layer uses only those below it'))
 sys.exit(1 if bad else 0)

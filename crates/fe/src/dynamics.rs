@@ -72,6 +72,7 @@
 //! 1e-10 m (machine-precision stagnation).
 
 mod carry;
+mod cut;
 mod mass;
 mod pair;
 mod water;

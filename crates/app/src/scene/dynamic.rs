@@ -16,19 +16,8 @@ use crate::checks::fatigue::stress::PipeSection;
 use crate::checks::fatigue::FatigueSpec;
 use crate::error::SceneError;
 
-use super::outputs::{design_check_of, extremes_of, fatigue_of};
-
-/// A gauge: bending moment and tension recorded at an arc length (interpolated between nodes).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Gauge {
-    /// Its name.
-    pub name: String,
-    /// Arc length from the top, m (for a `midway_touchdown_lift` gauge, set after the statics).
-    pub arc: f64,
-    /// If given: the gauge lies midway (in arc length) between the static touchdown point and the one
-    /// with the top raised by this much, m.
-    pub midway_touchdown_lift: Option<f64>,
-}
+use super::outputs::Gauge;
+use super::outputs::{design_check_of, extremes_of, fatigue_of, gauges_of};
 
 /// Records a run keeps at most when its scene gives no `dynamic.output_interval`.
 pub const DEFAULT_MAX_RECORDS: f64 = 10_000.0;
@@ -357,67 +346,6 @@ fn motion_of(
             }
         }
     })
-}
-
-/// `[[gauge]]`: distinct names, each at an arc length or midway between touchdown points.
-fn gauges_of(file: &str, raw: &RiserFile, length: f64) -> Result<Vec<Gauge>, SceneError> {
-    let mut gauges = Vec::new();
-    for (i, g) in raw.gauge.iter().enumerate() {
-        if g.name.is_empty() || g.name.contains('/') {
-            return Err(invalid(
-                file,
-                format!("gauge[{i}].name"),
-                "a non-empty name without '/'",
-            ));
-        }
-        if let Some(j) = raw.gauge[..i].iter().position(|o| o.name == g.name) {
-            return Err(invalid(
-                file,
-                format!("gauge[{i}].name"),
-                format!(
-                    "a name no other gauge has (gauge[{j}] is also \"{}\")",
-                    g.name
-                ),
-            ));
-        }
-        match (g.arc, g.midway_touchdown_lift) {
-            (Some(arc), None) => {
-                if !(0.0..=length).contains(&arc) {
-                    return Err(invalid(
-                        file,
-                        format!("gauge[{i}].arc"),
-                        format!("an arc length from the top within [0, {length}] m"),
-                    ));
-                }
-                gauges.push(Gauge {
-                    name: g.name.clone(),
-                    arc,
-                    midway_touchdown_lift: None,
-                });
-            }
-            (None, Some(lift)) => {
-                positive(
-                    file,
-                    &format!("gauge[{i}].midway_touchdown_lift"),
-                    lift,
-                    "a lift of the top in m",
-                )?;
-                gauges.push(Gauge {
-                    name: g.name.clone(),
-                    arc: f64::NAN,
-                    midway_touchdown_lift: Some(lift),
-                });
-            }
-            _ => {
-                return Err(invalid(
-                    file,
-                    format!("gauge[{i}]"),
-                    "exactly one of `arc` (m) or `midway_touchdown_lift` (m)",
-                ))
-            }
-        }
-    }
-    Ok(gauges)
 }
 
 /// `[structural_damping]` → `β = ζ·T/π` (s), if the scene has it.

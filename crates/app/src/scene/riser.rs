@@ -14,8 +14,9 @@ use super::sections;
 use super::{from_doc, invalid, parse, required, Resolver};
 use crate::error::SceneError;
 
-pub use super::dynamic::{DynamicSpec, Gauge, DEFAULT_MAX_RECORDS};
+pub use super::dynamic::{DynamicSpec, DEFAULT_MAX_RECORDS};
 pub use super::line::{Ends, LineProperties};
+pub use super::outputs::Gauge;
 pub use super::sea::KINEMATICS_PER_PERIOD;
 pub use super::size::{run_size, RunSize, RECORD_BYTES_PER_NODE};
 pub use super::tables::*;

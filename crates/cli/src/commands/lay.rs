@@ -13,8 +13,7 @@ use catena::scene::riser::RiserScene;
 use catena::AppError;
 use catena_io::{h5, lay as report, plot};
 
-use super::run::RunCommandOptions;
-use super::write_json;
+use super::{write_json, RunCommandOptions};
 
 /// Lays the pipe of `scene` and writes its outputs into `out`: with `--checkpoint-every N`, a
 /// checkpoint `DIR/checkpoint.json` every N steps; with `--restart FILE`, from that checkpoint;

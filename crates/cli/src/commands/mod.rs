@@ -24,15 +24,38 @@ pub use convergence::convergence;
 pub use extremes::{extremes, ExtremesOptions};
 pub use fatigue::fatigue;
 pub use rainflow::rainflow;
-pub use run::{compress_by_default, run, RunCommandOptions};
+pub use run::{compress_by_default, run};
 pub use soil_test::soil_test;
 pub use statics::static_;
 pub use strength::strength;
 pub use sweep::{sweep, SweepOptions};
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 
 use catena::AppError;
+
+/// Options of `catena run` (a lay's too: `run` hands a scene with a `[lay]` to [`lay::run_lay`]).
+#[derive(Debug, Clone, Default)]
+pub struct RunCommandOptions {
+    /// Show a progress bar.
+    pub progress: bool,
+    /// Write `DIR/checkpoint.json` every this many steps.
+    pub checkpoint_every: Option<u64>,
+    /// Continue from this checkpoint.
+    pub restart: Option<PathBuf>,
+    /// Set by the SIGINT/SIGTERM handler: the run ends at the next step.
+    pub stop: Option<Arc<AtomicBool>>,
+    /// Stop (successfully) after this many steps.
+    pub stop_after: Option<u64>,
+    /// Compress the recorded float fields (`None`: when the records are decimated, see
+    /// [`run::compress_by_default`]).
+    pub compress: Option<bool>,
+    /// The threads the run may keep busy (`None`: the machine's cores;
+    /// [`catena::run::RunOptions::threads`]).
+    pub threads: Option<usize>,
+}
 
 pub(crate) fn write_json(path: &Path, v: &serde_json::Value) -> Result<(), AppError> {
     let text = serde_json::to_string_pretty(v).map_err(|e| AppError::Output {

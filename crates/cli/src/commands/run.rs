@@ -2,9 +2,7 @@
 //! stepping path.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
+use std::path::Path;
 use std::time::Instant;
 
 use catena::run::checkpoint::Checkpoint;
@@ -17,28 +15,7 @@ use catena_io::{plot, report};
 
 use crate::progress::{ProgressBar, SignalStop};
 
-use super::{warn, write_json};
-
-/// Options of `catena run`.
-#[derive(Debug, Clone, Default)]
-pub struct RunCommandOptions {
-    /// Show a progress bar.
-    pub progress: bool,
-    /// Write `DIR/checkpoint.json` every this many steps.
-    pub checkpoint_every: Option<u64>,
-    /// Continue from this checkpoint.
-    pub restart: Option<PathBuf>,
-    /// Set by the SIGINT/SIGTERM handler: the run ends at the next step.
-    pub stop: Option<Arc<AtomicBool>>,
-    /// Stop (successfully) after this many steps.
-    pub stop_after: Option<u64>,
-    /// Compress the recorded float fields (`None`: when the records are decimated, see
-    /// [`compress_by_default`]).
-    pub compress: Option<bool>,
-    /// The threads the run may keep busy (`None`: the machine's cores;
-    /// [`catena::run::RunOptions::threads`]).
-    pub threads: Option<usize>,
-}
+use super::{warn, write_json, RunCommandOptions};
 
 /// Whether `results.h5`'s float fields are compressed when the user did not say: when the records
 /// are decimated (`output_interval` > `time_step`) and the run may keep three threads busy or more

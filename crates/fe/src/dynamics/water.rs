@@ -37,7 +37,7 @@ pub(super) struct WaterOut<'a, S> {
     scratch: &'a mut S,
     grid: &'a mut KinematicsGrid,
     grid_new: &'a mut bool,
-    lane: Option<&'a mut super::pair::Lane>,
+    lane: Option<&'a mut super::cut::Lane>,
 }
 
 /// The water kinematics of any wave theory ([`WaveKinematics`]) at each node at `t`: evaluated at
@@ -79,7 +79,7 @@ pub(super) fn water_kinematics<W: WaveKinematics>(
             l.lend_state(state);
         }
         // Node `i` at grid time `tm`, extrapolated from the committed State (on the second
-        // thread, a lent node's from the first's, [`super::pair::Lane::lent_state`]).
+        // thread, a lent node's from the first's, [`super::cut::Lane::lent_state`]).
         let lent_state = lane.as_deref().filter(|l| l.side == 1);
         let (u, v, a) = (&state.u, &state.v, &state.a);
         let at = |tm: f64, i: usize| {

@@ -10,7 +10,7 @@ use crate::wave_sampling::KinematicsGrid;
 use crate::waves::{Kinematics, WaveScratch};
 use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 
-use super::pair::{Lane, Scope};
+use super::cut::{Lane, Scope, Split};
 use super::*;
 
 /// Scratch for the dynamics (never saved).
@@ -73,19 +73,6 @@ pub struct DynWorkspace {
     pub(super) scope: Scope,
     /// Where it meets the thread that steps the other part, when there is one ([`Pair`]).
     pub(super) lane: Option<Lane>,
-}
-
-/// The line cut in two parts where the band's two ends meet ([`Assembler::split_at_node`]): the
-/// first owns the nodes `0..=k`, the second the others. The residual's squared norm is the sum of
-/// the two parts' in that order, whether one thread steps the line or two (issue 48), so that
-/// both give the same bits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Split {
-    /// The first part's last node.
-    pub k: usize,
-    /// The first of the free runs that belong to the second part (the runs are cut at its first
-    /// dof).
-    pub runs: usize,
 }
 
 impl DynWorkspace {

@@ -1,7 +1,7 @@
 //! The twisted band factorisation and solve on two threads: the top end on the caller's thread,
 //! the bottom end on a [`Partner`] thread, the middle five on the caller's.
 //!
-//! The twisted order ([`super::factor_twisted5`]) makes the two ends independent until the middle:
+//! The twisted order ([`super::twisted::factor_twisted5`]) makes the two ends independent until the middle:
 //! the top end reads and writes the band's columns `0..m`, the bottom end its columns `m+5..n`.
 //! So the band is kept in two stores: the caller's (the [`BandLdlt`]'s own, columns `0..m+5`)
 //! and the partner's (columns `m+5..n`). Each thread runs exactly the kernels the one-thread
@@ -27,10 +27,11 @@
 //! on its part of the line, issue 48): only the five columns at the middle (factorisation) and
 //! ten unknowns (solve) cross, at a pair of [`Seat`]s.
 
-use super::{
+use super::twisted::{
     backward_bottom_end5, backward_top_end5, factor_bottom5, factor_middle5, factor_top5,
-    forward_bottom_end5, forward_top_end5, solve_middle5, BandLdlt, SolveError, SparseSym,
+    forward_bottom_end5, forward_top_end5, solve_middle5,
 };
+use super::{BandLdlt, SolveError, SparseSym};
 use crate::partner::{Partner, Seat};
 
 /// The partner's job: factorise the bottom end.

@@ -1,3 +1,4 @@
+use super::top_down::{factor_band_dyn, solve_band_dyn};
 use super::*;
 
 /// A block-tridiagonal SPD system like a beam's (3 dof per node): the sparse LDLᵀ solution matches
