@@ -89,11 +89,12 @@ def run(scene, progress=None, every: int = 100, threads: int = 0) -> Results:
     ``[fatigue]`` table ``fatigue/damage_<fibre>`` (over the counted record).
 
     The interpreter lock is released while catena steps, so runs in several threads run in
-    parallel. ``threads`` is the number of threads the run may keep busy (0: every core): from two,
-    the line (or a lay's window) is stepped on two threads where it is long enough to cut, with the
-    same results to the bit. Runs side by side in several Python threads should share the cores
-    (``threads=1`` each on two cores): two threads stepping one line in lockstep slow down when
-    they share a core with another. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
+    parallel. ``threads`` is the number of threads the run may keep busy. 0, the default: one when
+    called from a Python thread other than the main one (a ``threading.Thread``, an executor's
+    worker, a Dask worker's task) or from a process pool's worker, else the cores no other run of
+    this process holds. From two, the line (or a lay's window) is stepped on two threads where it
+    is long enough to cut and where two are measured to be faster than one (not on cores busy with
+    other work), with the same results to the bit. ``progress(t, duration)`` (both in s) is called every ``every`` steps, at most five
     times a second, and at the last step; Ctrl-C stops the run and raises ``KeyboardInterrupt``. A
     run that stops early (a step that does not converge) still returns everything up to its last
     converged step: see ``summary["completed"]`` and ``summary["stop_reason"]``.

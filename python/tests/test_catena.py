@@ -209,37 +209,44 @@ def test_the_public_names_are_the_api():
 
 
 def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits():
-    """The interpreter is released while catena steps: two runs in two threads, one core each,
-    take clearly less than twice one run (on two cores), and give the same numbers as one at a
-    time, and as one run stepped on two threads."""
+    """The interpreter is released while catena steps, and a run called from a Python thread other
+    than the main one takes one thread by default (issue 69): two runs in two threads at the
+    default take under 1.5x one run at the default (on two cores), and give the same numbers as
+    one at a time, on one thread or two."""
     import threading
     import time
 
     if (os.cpu_count() or 1) < 2:
         pytest.skip("needs two cores")
     scene = catena.Scene.from_file(HEAVE).edited({"dynamic.duration": 150.0})
-    t0 = time.perf_counter()
     alone = catena.run(scene, threads=1)
-    one = time.perf_counter() - t0
+    assert alone.summary["stepping_threads"] == 1
     paired = catena.run(scene, threads=2)
     assert paired.summary["stepping_threads"] == 2
-    assert alone.summary["stepping_threads"] == 1
     out = [None, None]
 
     def go(k):
-        out[k] = catena.run(scene, progress=lambda t, d: None, every=50, threads=1)
+        out[k] = catena.run(scene, progress=lambda t, d: None, every=50)
 
-    threads = [threading.Thread(target=go, args=(k,)) for k in range(2)]
-    t0 = time.perf_counter()
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    both = time.perf_counter() - t0
-    for r in [*out, paired]:
+    # The fastest of five of each: on this two-core host two single-thread runs side by side,
+    # even in two processes, take 1.2-1.6x one run alone (the noise of a shared machine).
+    one, both = float("inf"), float("inf")
+    for _ in range(5):
+        t0 = time.perf_counter()
+        default = catena.run(scene)
+        one = min(one, time.perf_counter() - t0)
+        threads = [threading.Thread(target=go, args=(k,)) for k in range(2)]
+        t0 = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        both = min(both, time.perf_counter() - t0)
+    assert [r.summary["stepping_threads"] for r in out] == [1, 1]
+    for r in [*out, paired, default]:
         for name in ["time", "bending_moment", "penetration", "ranges/bending_moment/min"]:
             assert np.array_equal(r[name], alone[name], equal_nan=True), name
-    assert both < 1.6 * one, f"two runs in two threads took {both:.2f} s, one run {one:.2f} s"
+    assert both < 1.5 * one, f"two runs in two threads took {both:.2f} s, one run {one:.2f} s"
 
 
 def test_studies_sweeps_and_sequences_on_an_executor_give_the_same_bits(tmp_path):

@@ -13,7 +13,7 @@ use catena::scene::edit::Edit;
 use catena::scene::DirResolver;
 use catena::statics;
 use catena_fe::assembly::LineResults;
-use catena_fe::dynamics::{self, DynState, DynWorkspace, Pair, Samples};
+use catena_fe::dynamics::{self, Drive, DynState, DynWorkspace, Pair, Samples};
 use catena_fe::wave_sampling::Sample;
 
 /// The bits of a list of numbers.
@@ -84,6 +84,26 @@ fn one_and_two(case: &str, steps: usize) -> (u32, u32) {
     (cuts, retries)
 }
 
+/// How the second line is stepped: by a pair all along, its wave samples shared as it says, or by
+/// a [`Drive`] shifting between one thread and two on a fixed schedule.
+#[derive(Clone, Copy)]
+enum How {
+    Pair(Samples),
+    Drive(fn(u64) -> bool),
+}
+
+impl From<Samples> for How {
+    fn from(s: Samples) -> Self {
+        Self::Pair(s)
+    }
+}
+
+/// The second line's stepping.
+enum Second {
+    Pair(Pair),
+    Drive(Drive),
+}
+
 /// [`one_and_two`] on `case` with `edits`, the pair's wave samples shared as `samples` says; also
 /// returns how many of the steps had a node out of the water at a wave kinematics sample, and how
 /// many of the first part's nodes the second thread sampled.
@@ -91,7 +111,7 @@ fn edited_one_and_two(
     case: &str,
     edits: &[Edit],
     steps: usize,
-    samples: Samples,
+    how: impl Into<How>,
 ) -> (u32, u32, usize, usize) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../cases")
@@ -109,15 +129,24 @@ fn edited_one_and_two(
     let mut ws2 = DynWorkspace::new(&dm.line).expect("workspace");
     let mut one = dynamics::initial_state(&dm, &st.u, &mut ws1);
     let mut two = dynamics::initial_state(&dm, &st.u, &mut ws2);
-    let mut pair = Pair::start_with(&dm, &two, &mut ws2, samples)
-        .expect("a thread")
-        .unwrap_or_else(|| panic!("{case}: a line a pair steps"));
-    let lent = pair.lent_nodes(&ws2);
+    let (mut second, lent) = match how.into() {
+        How::Pair(samples) => {
+            let pair = Pair::start_with(&dm, &two, &mut ws2, samples)
+                .expect("a thread")
+                .unwrap_or_else(|| panic!("{case}: a line a pair steps"));
+            let lent = pair.lent_nodes(&ws2);
+            (Second::Pair(pair), lent)
+        }
+        How::Drive(schedule) => (Second::Drive(Drive::with_schedule(schedule)), 0),
+    };
     let (mut r1, mut r2) = (LineResults::new(n), LineResults::new(n));
     let (mut cuts, mut retries, mut dry) = (0, 0, 0);
     for k in 1..=steps {
         let i1 = dynamics::advance(&dm, &mut one, &mut ws1, spec.dt);
-        let i2 = pair.advance(&dm, &mut two, &mut ws2, spec.dt);
+        let i2 = match &mut second {
+            Second::Pair(p) => p.advance(&dm, &mut two, &mut ws2, spec.dt),
+            Second::Drive(d) => d.advance(&dm, &mut two, &mut ws2, spec.dt),
+        };
         assert_eq!(i1, i2, "{case}: step {k}: the steps' outcomes differ");
         let info = i1.unwrap_or_else(|e| panic!("{case}: step {k}: {e}"));
         (cuts, retries) = (cuts + info.cuts, retries + info.retries);
@@ -135,14 +164,28 @@ fn edited_one_and_two(
         same_results(case, k, &r1, &r2);
     }
     let m1 = ws1.solver_memory().expect("a factorisation");
-    let m2 = pair.solver_memory(&mut ws2).expect("a factorisation");
+    let m2 = match &second {
+        Second::Pair(p) => p.solver_memory(&mut ws2),
+        Second::Drive(d) => d.solver_memory(&mut ws2),
+    }
+    .expect("a factorisation");
     assert_eq!(
         bits(&m1.values),
         bits(&m2.values),
         "{case}: solver memories differ"
     );
     assert_eq!(m1.dt.to_bits(), m2.dt.to_bits());
-    pair.stop(&dm, &mut ws2);
+    match second {
+        Second::Pair(p) => p.stop(&dm, &mut ws2),
+        Second::Drive(mut d) => {
+            let ([on_one, on_two], shifts) = d.tally();
+            assert!(
+                on_one > 0 && on_two > 0 && shifts >= 4,
+                "{case}: the drive did not shift"
+            );
+            d.stop(&dm, &mut ws2);
+        }
+    }
     println!("{case}: {steps} steps, {cuts} cuts, {retries} retries, {dry} with a node out of the water, {lent} nodes sampled by the second thread for the first: the same bits");
     (cuts, retries, dry, lent)
 }
@@ -210,6 +253,29 @@ fn two_threads_step_waves_as_one_to_the_bit() {
     let (_, _, dry, _) = edited_one_and_two(storm, &[ramp, above], 300, Samples::Shared);
     assert!(dry > 0, "no node was ever out of the water");
     one_and_two("benchmarks/riser-airy-wave.toml", 300);
+}
+
+/// A [`Drive`] shifting between one thread and two mid-run (issue 69) steps as one thread does, to
+/// the bit: the pair's solver memory kept by the first thread when the pair stops, a pair started
+/// from the State and that memory, on a schedule with runs of both lengths and single steps, through
+/// step cuts (sticky soil, Newton given two iterations in storm 23's waves) and the wave samples
+/// lent between the threads.
+#[test]
+fn a_drive_shifting_between_one_and_two_threads_steps_as_one_to_the_bit() {
+    let schedule: fn(u64) -> bool = |k| (k / 7) % 2 == 0 || k % 13 == 5;
+    let (cuts, retries, ..) =
+        edited_one_and_two("hard/sticky-soil.toml", &[], 300, How::Drive(schedule));
+    assert!(cuts + retries > 0, "the case no longer cuts a step");
+    let ramp = Edit::set("waves.ramp", 5.0);
+    let two_iterations = Edit::set("dynamic.max_iterations", 2);
+    let (cuts, ..) = edited_one_and_two(
+        "scr1000/storm23.toml",
+        &[ramp, two_iterations],
+        300,
+        How::Drive(schedule),
+    );
+    assert!(cuts > 0, "no step cut");
+    edited_one_and_two("benchmarks/scr-heave.toml", &[], 200, How::Drive(schedule));
 }
 
 /// A run on two threads (`RunOptions::threads`) is the run on one, to the bit: the heave
@@ -281,13 +347,14 @@ impl catena::observe::Observer for Busy {
 }
 
 /// A run steps the line on two threads where its threads leave two beside its observers' own
-/// (the HDF5 writer's), with waves or without; else on one.
+/// (the HDF5 writer's), with waves or without; else on one. (40 steps: asked for two threads, a
+/// run's drive tries them after a first block of 32 steps on one, [`Drive`].)
 #[test]
 fn a_run_steps_on_two_threads_only_where_it_has_them() {
     use catena::run::RunOptions;
     let heave = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/benchmarks/scr-heave.toml");
     let mut st = statics::solve(statics::read_scene(&heave).expect("case")).expect("statics");
-    st.scene.dynamic.as_mut().expect("dynamic").duration = 1.0;
+    st.scene.dynamic.as_mut().expect("dynamic").duration = 2.0;
     let stepping = |threads, extra: &mut [&mut dyn catena::observe::Observer]| {
         let opts = RunOptions::with_threads(Some(threads));
         run::run(st.clone(), extra, opts)
@@ -300,7 +367,7 @@ fn a_run_steps_on_two_threads_only_where_it_has_them() {
     assert_eq!(stepping(3, &mut [&mut Busy]), 2);
     let waves = heave.with_file_name("scr-regular-wave.toml");
     let mut st = statics::solve(statics::read_scene(&waves).expect("case")).expect("statics");
-    st.scene.dynamic.as_mut().expect("dynamic").duration = 1.0;
+    st.scene.dynamic.as_mut().expect("dynamic").duration = 2.0;
     let opts = RunOptions::with_threads(Some(2));
     let r = run::run(st, &mut [], opts).expect("runs");
     assert_eq!(

@@ -78,10 +78,11 @@ enum Command {
         /// would slow the run).
         #[arg(long, value_name = "WHEN", default_value = "auto", value_parser = ["auto", "yes", "no"])]
         compress: String,
-        /// The threads the run may keep busy (default: the machine's cores). The line is stepped
-        /// on two threads where two are left beside the HDF5 writer's (counted when it compresses
-        /// or records every step; a pipe-lay's window from 2); the fatigue damage is counted on a
-        /// thread of its own where one is left.
+        /// The threads the run may keep busy (default: the machine's cores). The line may be
+        /// stepped on two threads where two are left beside the HDF5 writer's (counted when it
+        /// compresses or records every step; a pipe-lay's window from 2), step by step where two
+        /// are measured to be faster than one (not on cores busy with other work); the fatigue
+        /// damage is counted on a thread of its own where one is left.
         /// The results are the same whatever the number; the plots have threads of their own.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,

@@ -326,7 +326,7 @@ fn decimated_records_leave_two_threads_to_the_line() {
         // The text says on how many threads the line stepped, and whether the writer compressed.
         let plural = if stepping == 1 { "" } else { "s" };
         assert!(
-            text.contains(&format!("s on {stepping} thread{plural} (")),
+            text.contains(&format!("s on {stepping} thread{plural}")),
             "{text}"
         );
         let compressing = text.contains("(writing and compressing ");

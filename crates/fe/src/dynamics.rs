@@ -12,11 +12,9 @@
 //! solve), the commit, predictor retries and step cuts. `F` collects every non-inertial force as "internal
 //! minus external"; `F_n` is kept in the State, so the step is exactly reproducible after a
 //! restart. The Newton Jacobian is `M/(βΔt²) + (1 + α)(K + γ/(βΔt)·C)`.
-//! The first Newton iteration of a step reuses the Jacobian factorised last (same Δt) — a
-//! modified-Newton start that saves one factorisation per step — and later ones go on reusing it
-//! while its measured contraction rate lets the next correction converge; otherwise Newton
-//! assembles and factorises the tangent (full Newton from there). Every converged answer meets the
-//! same tolerance ([`crate::newton`] has the rule).
+//! The first Newton iteration of a step reuses the Jacobian factorised last (same Δt), and later
+//! ones go on reusing it while its measured contraction rate lets the next correction converge;
+//! otherwise Newton factorises the tangent. Every answer meets one tolerance ([`crate::newton`]).
 //!
 //! **Predictor.** A step starts from the constant-acceleration predictor `u_n + Δt v_n + Δt²/2 a_n`.
 //! If Newton diverges from it, the same step is tried once more from the constant-velocity predictor
@@ -48,8 +46,7 @@
 //!
 //! **Drag (Morison)** on the velocity relative to the current `U(z)`, split along the tangent `t`:
 //! `f = ½ρ Cd_n D |v_n| v_n + ½ρ Cd_a πD |v_t| v_t t` per unit (unstretched) length, lumped at nodes
-//! over their tributary lengths, like weight and mass. Its velocity
-//! derivative enters `C`; its dependence on the orientation is left out of the Jacobian.
+//! over their tributary lengths; its velocity derivative enters `C`, not its orientation's.
 //!
 //! **Seabed.** Each node's trial is evaluated from its committed history, its penetration rate and
 //! Δt (pure); the histories are replaced by the trials' `next` only when the step converges. The
@@ -73,6 +70,7 @@
 
 mod carry;
 mod cut;
+mod drive;
 mod mass;
 mod pair;
 mod water;
@@ -80,6 +78,7 @@ mod workspace;
 
 use carry::at_rest;
 pub use carry::{carried_state, Carry};
+pub use drive::Drive;
 use mass::{add_mass_tangent, lump_mass, structural_mass};
 pub use pair::{Pair, Samples};
 use water::wave_kinematics;

@@ -18,19 +18,22 @@
 //! A job asked while the thread is deciding to park leaves the unpark token set, and `park`
 //! returns at once: no wake-up is lost.
 //!
-//! **Oversubscribed.** Where the two threads share a processor with others (tests run side by
-//! side, a study's jobs), a waiting side that spins keeps the other from running: the waiter
-//! yields the processor after spinning for [`YIELD_AFTER`], and so does an idle partner. A
-//! partner that died (its job panicked) is
-//! noticed by the waiter, which then panics too rather than waiting for ever.
+//! **Oversubscribed.** Where the two threads share a processor with others (a build beside the
+//! run, tests side by side, a study's jobs), the other side of a wait may not be running for a
+//! time slice (milliseconds). A waiting side then must not keep its core: it spins for
+//! [`YIELD_AFTER`], yields the processor until [`PARK_AFTER`], and then parks until the other side
+//! rings its [`Bell`], giving its core to whatever else runs; an idle partner parks after
+//! [`SPIN`]. (Whether two threads pay at all on a shared machine is measured by the run:
+//! [`crate::dynamics::Drive`].) A partner that died (its job panicked) is noticed by the waiter,
+//! which then panics too rather than waiting for ever.
 //!
 //! **Meetings.** Two threads that each run the same loop on their own part of a line meet where
 //! the parts touch, each leaving a few numbers for the other: a [`Seat`] each ([`seats`]).
 
 use std::cell::Cell;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{fence, AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
-use std::thread::JoinHandle;
+use std::thread::{JoinHandle, Thread};
 use std::time::{Duration, Instant};
 
 /// How long the partner spins for its next job before it parks.
@@ -40,21 +43,67 @@ pub const SPIN: Duration = Duration::from_micros(500);
 /// waits of a step, short against a time slice.
 pub const YIELD_AFTER: Duration = Duration::from_micros(20);
 
-/// Waits until `ready`, spinning, then yielding the processor after [`YIELD_AFTER`]; panics with
-/// `gone` when `alive` says the other side has gone.
-#[inline]
-fn wait_until(ready: impl Fn() -> bool, alive: impl Fn() -> bool, gone: &str) {
-    let mut spins = 0u32;
-    let mut since = None;
-    while !ready() {
-        std::hint::spin_loop();
-        spins = spins.wrapping_add(1);
-        if spins % 64 == 0 {
-            let t0 = *since.get_or_insert_with(Instant::now);
-            if t0.elapsed() > YIELD_AFTER {
-                assert!(alive(), "{gone}");
-                std::thread::yield_now();
+/// How long a waiting side spins (then yields) before it parks: a wait this long means the other
+/// side is not running (on a processor shared with other work, descheduled for a time slice,
+/// milliseconds), so the waiter gives its core away until the other side rings ([`Bell`]).
+pub const PARK_AFTER: Duration = Duration::from_micros(60);
+
+/// A waiter's bell: a side that waits long parks after saying so here, and the side that makes
+/// it ready rings it ([`Bell::ring`]), waking it only when it sleeps (one fence and one load
+/// otherwise). A waiter sets `sleeping` and then reads whether it is ready; the ringer makes it
+/// ready and then reads `sleeping`, each with a sequentially consistent fence between, so at least
+/// one of them sees the other's write: no wake-up is lost. A park also ends after
+/// [`Bell::NAP`], and the waiter reads again.
+#[derive(Debug, Default)]
+struct Bell {
+    sleeping: AtomicBool,
+    thread: Mutex<Option<Thread>>,
+}
+
+impl Bell {
+    /// The longest a waiter sleeps before it reads again (a safeguard: a ring wakes it sooner).
+    const NAP: Duration = Duration::from_millis(2);
+
+    /// Wakes the waiter if it sleeps; called after the write that makes it ready.
+    #[inline]
+    fn ring(&self) {
+        fence(Ordering::SeqCst);
+        if self.sleeping.load(Ordering::Relaxed) {
+            if let Some(t) = lock(&self.thread).as_ref() {
+                t.unpark();
             }
+        }
+    }
+
+    /// Waits until `ready`: spins, yields the processor after [`YIELD_AFTER`], parks after
+    /// [`PARK_AFTER`] until rung; panics with `gone` when `alive` says the other side has gone.
+    #[inline]
+    fn wait(&self, ready: impl Fn() -> bool, alive: impl Fn() -> bool, gone: &str) {
+        let mut spins = 0u32;
+        let mut since = None;
+        while !ready() {
+            std::hint::spin_loop();
+            spins = spins.wrapping_add(1);
+            if spins % 64 != 0 {
+                continue;
+            }
+            let t0 = *since.get_or_insert_with(Instant::now);
+            let waited = t0.elapsed();
+            if waited <= YIELD_AFTER {
+                continue;
+            }
+            assert!(alive(), "{gone}");
+            if waited <= PARK_AFTER {
+                std::thread::yield_now();
+                continue;
+            }
+            *lock(&self.thread) = Some(std::thread::current());
+            self.sleeping.store(true, Ordering::Relaxed);
+            fence(Ordering::SeqCst);
+            if !ready() {
+                std::thread::park_timeout(Self::NAP);
+            }
+            self.sleeping.store(false, Ordering::Relaxed);
         }
     }
 }
@@ -70,6 +119,8 @@ struct Shared<W> {
     done: AtomicU64,
     /// The partner's work.
     work: Mutex<W>,
+    /// The caller's bell, rung when a job is done.
+    bell: Bell,
 }
 
 /// A thread that runs one job function on its own work, on request (see the module docs).
@@ -96,6 +147,7 @@ impl<W: Send + 'static> Partner<W> {
             asked: AtomicU64::new(0),
             done: AtomicU64::new(0),
             work: Mutex::new(work),
+            bell: Bell::default(),
         });
         let theirs = Arc::clone(&shared);
         let handle = std::thread::Builder::new()
@@ -127,7 +179,7 @@ impl<W: Send + 'static> Partner<W> {
     /// When the partner thread has died (its job panicked).
     pub fn wait(&self) -> MutexGuard<'_, W> {
         let seq = self.seq.get();
-        wait_until(
+        self.shared.bell.wait(
             || self.shared.done.load(Ordering::Acquire) == seq,
             || !self.handle.as_ref().is_none_or(JoinHandle::is_finished),
             "the partner thread stopped before its job was done (it panicked)",
@@ -194,6 +246,7 @@ fn serve<W>(s: &Shared<W>, job: fn(&mut W, u8)) {
             job(&mut w, code);
         }
         s.done.store(last, Ordering::Release);
+        s.bell.ring();
     }
 }
 
@@ -220,6 +273,8 @@ struct Table {
     /// `mail[side][parity]`.
     mail: [[Mutex<Vec<f64>>; 2]; 2],
     capacity: usize,
+    /// Each side's bell, rung by the other when it arrives.
+    bells: [Bell; 2],
 }
 
 impl std::fmt::Debug for Seat {
@@ -238,6 +293,7 @@ pub fn seats(capacity: usize) -> (Seat, Seat) {
         arrived: [AtomicU64::new(0), AtomicU64::new(0)],
         mail: [[mailbox(), mailbox()], [mailbox(), mailbox()]],
         capacity,
+        bells: [Bell::default(), Bell::default()],
     });
     let seat = |me| Seat {
         table: Arc::clone(&table),
@@ -268,7 +324,8 @@ impl Seat {
             m.extend_from_slice(mine);
         }
         self.table.arrived[self.me].store(c, Ordering::Release);
-        wait_until(
+        self.table.bells[other].ring();
+        self.table.bells[self.me].wait(
             || self.table.arrived[other].load(Ordering::Acquire) >= c,
             || Arc::strong_count(&self.table) == 2,
             "the other side of the meeting has gone",

@@ -63,6 +63,7 @@ pub fn json(r: &LayRun) -> Value {
             "end_embedment": num(d.end_embedment),
         })),
     });
+    js["lay"]["steps_on_two_threads"] = r.steps_on_two.into();
     js
 }
 
@@ -113,7 +114,7 @@ pub fn text(r: &LayRun) -> String {
     );
     let _ = writeln!(
         t,
-        "  {} steps, {} iterations, {} cuts; the window moved {} times, {:.0} of {} nodes in the solve on average; {:.2} s, stepped on {} thread{}",
+        "  {} steps, {} iterations, {} cuts; the window moved {} times, {:.0} of {} nodes in the solve on average; {:.2} s, stepped on {} thread{}{}",
         r.steps,
         r.iterations,
         r.cuts,
@@ -122,7 +123,8 @@ pub fn text(r: &LayRun) -> String {
         r.full.nodes(),
         r.wall_seconds,
         r.stepping_threads,
-        if r.stepping_threads == 1 { "" } else { "s" }
+        if r.stepping_threads == 1 { "" } else { "s" },
+        crate::report::share_on_two(r.steps_on_two, r.steps)
     );
     if let Some(c) = &r.installation {
         let _ = writeln!(

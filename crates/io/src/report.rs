@@ -196,6 +196,7 @@ pub fn dynamic_json(r: &DynamicRun) -> Value {
         "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
         "stepping_threads": r.stepping_threads,
+        "steps_on_two_threads": r.steps_on_two,
         "envelope_start": r.spec.envelope_start,
         "envelope_steps": e.samples,
         "max_moment_range": num(mr),
@@ -491,6 +492,19 @@ pub fn fatigue_json(r: &DynamicRun, f: &catena::run::observers::fatigue::Fatigue
         "counted_seconds": secs,
         "fibres": fibres,
     })
+}
+
+/// How much of a run two threads stepped, for the text summaries: `" for 97 % of the steps"`
+/// where a pair took some steps but not all ([`catena::run::DynamicRun::steps_on_two`]: a run on
+/// cores busy with other work steps on one where two are slower), else nothing.
+pub fn share_on_two(on_two: u64, steps: u64) -> String {
+    if on_two == 0 || on_two >= steps {
+        return String::new();
+    }
+    format!(
+        " for {:.0} % of the steps",
+        100.0 * on_two as f64 / steps as f64
+    )
 }
 
 #[cfg(test)]

@@ -225,7 +225,7 @@ impl Observer for Progress {
 /// `results.h5` `/dynamic` series and fields (one row per record), the envelopes (`*_min`,
 /// `*_max`, from `envelope_start`) and each gauge's moment and tension at every step. The
 /// interpreter is released while catena steps. `threads`: the threads the run may keep busy
-/// ([`RunOptions::threads`]; 0: the machine's cores).
+/// ([`RunOptions::threads`]; 0: [`run_threads`]).
 #[pyfunction]
 #[pyo3(signature = (scene, progress = None, every = 100, threads = 0))]
 fn run<'py>(
@@ -246,10 +246,11 @@ fn run<'py>(
         error: None,
     };
     let input = scene.scene.clone();
+    let threads = run_threads(py, threads);
     let r = py
         .detach(|| {
             let mut extra: [&mut dyn Observer; 2] = [&mut records, &mut prog];
-            let opts = RunOptions::with_threads(run_threads(threads));
+            let opts = RunOptions::with_threads(threads);
             catena::run::simulate(input, &mut extra, opts)
         })
         .map_err(err)?;
@@ -322,6 +323,7 @@ fn run<'py>(
         "predictor_retries": r.retries,
         "wall_seconds": r.wall_seconds,
         "stepping_threads": r.stepping_threads,
+        "steps_on_two_threads": r.steps_on_two,
         "records": nr,
         "time_step": r.spec.dt,
         "envelope_start": r.spec.envelope_start,
@@ -341,11 +343,12 @@ fn run<'py>(
 /// the same bits).
 fn run_lay<'py>(py: Python<'py>, scene: &PyScene, threads: usize) -> PyResult<Bound<'py, PyDict>> {
     let input = scene.scene.clone();
+    let threads = run_threads(py, threads);
     let r = py
         .detach(|| {
             let st = catena::statics::solve(catena::run::lay::statics_scene(input))?;
             let opts = catena::run::lay::LayOptions {
-                threads: run_threads(threads),
+                threads,
                 ..catena::run::lay::LayOptions::default()
             };
             catena::run::lay::lay_with(st, opts, &mut |_| true)
@@ -418,12 +421,36 @@ fn run_lay<'py>(py: Python<'py>, scene: &PyScene, threads: usize) -> PyResult<Bo
     Ok(out)
 }
 
-/// The threads a run may keep busy, as Python gives them (0: the machine's cores), as
-/// [`RunOptions::threads`] takes them. An executor's tasks default to 1: an executor runs as many
-/// tasks side by side as it has workers, usually one per core, and a run on two threads beside
-/// another would oversubscribe the cores (the results are the same to the bit whatever the number).
-fn run_threads(threads: usize) -> Option<usize> {
-    (threads > 0).then_some(threads)
+/// The threads a run may keep busy, as Python gives them, as [`RunOptions::threads`] takes them.
+/// 0, the default: one thread where the caller shares the cores with other callers
+/// ([`shared_caller`]: a Python thread other than the main one — a `threading.Thread`, an
+/// executor's worker, a Dask worker's task — or a process pool's worker), else the cores no other
+/// run of this process holds ([`catena::run::cores`]). Two runs started from two Python threads
+/// then step on one core each instead of four threads on two cores (1.98× one run, measured on
+/// two cores, before this default); the results are the same to the bit whatever the number.
+fn run_threads(py: Python<'_>, threads: usize) -> Option<usize> {
+    if threads > 0 {
+        return Some(threads);
+    }
+    shared_caller(py).then_some(1)
+}
+
+/// Whether this call comes from a Python thread other than the main one, or from a child process
+/// (`multiprocessing.parent_process()`: a process pool's worker). Where Python cannot say, no.
+fn shared_caller(py: Python<'_>) -> bool {
+    let other_thread = || -> PyResult<bool> {
+        let threading = py.import("threading")?;
+        let current = threading.call_method0("current_thread")?;
+        let main = threading.call_method0("main_thread")?;
+        Ok(!current.is(&main))
+    };
+    let child_process = || -> PyResult<bool> {
+        let parent = py
+            .import("multiprocessing")?
+            .call_method0("parent_process")?;
+        Ok(!parent.is_none())
+    };
+    other_thread().unwrap_or(false) || child_process().unwrap_or(false)
 }
 
 /// Runs `f` on `jobs` threads (0: all cores) with the interpreter released.
@@ -518,7 +545,7 @@ fn study_tasks(path: PathBuf) -> PyResult<String> {
 fn study_storm(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyResult<String> {
     let study = catena::studies::fatigue_study::Study::read(&path).map_err(err)?;
     let (storm, scene) = &study.storms[task("storm", index, study.storms.len())?];
-    let threads = run_threads(threads);
+    let threads = run_threads(py, threads);
     let r = py
         .detach(|| catena::studies::fatigue_study::run_storm(storm, scene, threads))
         .map_err(err)?;
@@ -703,8 +730,9 @@ fn sequence_visit(
             }
         )));
     }
+    let threads = run_threads(py, threads);
     let (r, next) = py
-        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, run_threads(threads)))
+        .detach(|| catena::studies::sequence::run_visit(&seq, k, start, threads))
         .map_err(err)?;
     Ok((to_json(&r)?, next.as_ref().map(to_json).transpose()?))
 }
@@ -720,8 +748,9 @@ fn sequence_as_laid(
 ) -> PyResult<String> {
     let seq = catena::studies::sequence::Sequence::read(&path).map_err(err)?;
     let k = task("visit", index, seq.visits.len())?;
+    let threads = run_threads(py, threads);
     let r = py
-        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, run_threads(threads)))
+        .detach(|| catena::studies::sequence::run_as_laid(&seq, k, threads))
         .map_err(err)?;
     to_json(&r)
 }
@@ -856,7 +885,7 @@ fn sweep_run(py: Python<'_>, path: PathBuf, index: usize, threads: usize) -> PyR
     let plan = catena::studies::sweep::Plan::read(&path).map_err(err)?;
     let runs = plan.runs();
     let spec = &runs[task("run", index, runs.len())?];
-    let threads = run_threads(threads);
+    let threads = run_threads(py, threads);
     to_json(&py.detach(|| catena::studies::sweep::run_one(spec, threads)))
 }
 

@@ -15,6 +15,7 @@
 
 pub mod as_laid;
 pub mod checkpoint;
+pub mod cores;
 pub mod lay;
 pub mod observe;
 pub mod observers;
@@ -22,12 +23,14 @@ pub mod outputs;
 pub mod records;
 pub mod statics;
 
+pub use cores::{default_threads, Cores};
+
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
 use catena_fe::assembly::LineResults;
-use catena_fe::dynamics::{self, DynWorkspace, DynamicModel, Pair, StepInfo};
+use catena_fe::dynamics::{self, Drive, DynWorkspace, DynamicModel, StepInfo};
 
 use crate::error::AppError;
 use crate::run::checkpoint::{Checkpoint, VERSION};
@@ -72,8 +75,11 @@ pub struct DynamicRun {
     pub cut_log: Vec<CutEvent>,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
-    /// The threads that stepped the line: 2 when a [`Pair`] did ([`RunOptions::threads`]), else 1.
+    /// The threads that stepped the line: 2 when a pair did for any step ([`Drive`]:
+    /// [`RunOptions::threads`] from 2, and where two are faster than one), else 1.
     pub stepping_threads: usize,
+    /// The steps two threads took ([`Drive`]: the others, one thread).
+    pub steps_on_two: u64,
     /// Why the run ended before its duration, if it did.
     pub stop: Option<Stop>,
     /// What the last converged step leaves for a run that continues from rest (a storm sequence).
@@ -146,10 +152,12 @@ pub struct RunOptions {
     pub start: Option<dynamics::Carry>,
     /// The threads this run may keep busy. From 2 beside the threads its observers keep busy
     /// ([`Observer::busy_threads`]: the HDF5 writer's, when it compresses or records every
-    /// step), the line is stepped on two threads where the scene allows it ([`dynamics::Pair`]; a
-    /// pipe-lay's window: [`crate::run::lay::LayOptions::threads`]); the
-    /// fatigue damage is counted on a thread of its own ([`crate::run::observers::fatigue`])
-    /// where one is left over, else on the stepping thread. `None` takes [`default_threads`]. A
+    /// step), the line may be stepped on two threads where the scene allows it
+    /// ([`dynamics::Pair`]; a pipe-lay's window: [`crate::run::lay::LayOptions::threads`]), step
+    /// by step where two are measured to be faster than one ([`Drive`]); the fatigue damage is
+    /// counted on a thread of its own ([`crate::run::observers::fatigue`]) where one is left
+    /// over, else on the stepping thread. `None` takes [`default_threads`]: the machine's cores
+    /// less those the runs under way in this process hold, at least one ([`cores`]). A
     /// study running `jobs` runs side by side gives each
     /// [`crate::studies::schedule::threads_per_run`], so that its runs do not oversubscribe the
     /// cores. The results are the same to the bit whatever the number (only where the work is
@@ -158,20 +166,14 @@ pub struct RunOptions {
 }
 
 impl RunOptions {
-    /// The default options but for the threads the run may keep busy (`None`: the machine's
-    /// cores): what each run of a study gets.
+    /// The default options but for the threads the run may keep busy (`None`:
+    /// [`default_threads`]): what each run of a study gets.
     pub fn with_threads(threads: Option<usize>) -> Self {
         Self {
             threads,
             ..Self::default()
         }
     }
-}
-
-/// The threads a run takes when its options do not say: the machine's cores (1 when they cannot
-/// be read).
-pub fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
 }
 
 /// Places the gauges defined by a touchdown rule: midway (in arc length) between the static
@@ -256,7 +258,9 @@ pub fn run(
             None => dynamics::initial_state(&dm, &statics.u, &mut ws),
         },
     };
-    let threads = opts.threads.unwrap_or_else(default_threads).max(1);
+    // Held until the run ends: a run beside it in this process takes the cores left ([`cores`]).
+    let cores = Cores::take(opts.threads);
+    let threads = cores.threads();
     let mut res = LineResults::new(n);
     let mut first_step = 1;
     let restarted = opts.restart.is_some();
@@ -272,17 +276,17 @@ pub fn run(
     // keep busy (the HDF5 writer's) and the scene allows it ([`Pair`]); the fatigue counting then
     // keeps a thread of its own only from three.
     let others: usize = extra.iter().map(|o| o.busy_threads()).sum();
-    let mut pair = match threads >= 2 + others {
-        false => None,
-        true => Pair::start(&dm, &state, &mut ws).map_err(|e| AppError::Run {
-            file: statics.scene.file.clone(),
-            message: format!("could not start the run's second thread: {e}"),
-        })?,
+    let stepping = threads.saturating_sub(others);
+    // Two threads asked for are tried whatever the machine's idle time ([`Drive::asked`]).
+    let mut drive = match opts.threads {
+        Some(_) => Drive::asked(stepping),
+        None => Drive::new(stepping),
     };
+    let on_two = drive.start(&dm, &state, &mut ws);
     let mut outputs = Outputs::build(&Setup {
         spec: &spec,
         model: &dm,
-        threads: threads - usize::from(pair.is_some()),
+        threads: threads - usize::from(on_two),
     });
     if let Some(cp) = &opts.restart {
         restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
@@ -306,7 +310,7 @@ pub fn run(
         ctx: &ctx,
         state: &mut state,
         ws: &mut ws,
-        pair: pair.as_mut(),
+        drive: &mut drive,
         res: &mut res,
         outputs: &mut outputs,
         tally: Tally {
@@ -316,10 +320,10 @@ pub fn run(
     };
     let stop = stepper.steps(first_step, extra, &opts);
     let tally = std::mem::take(&mut stepper.tally);
-    let stepping_threads = 1 + usize::from(pair.is_some());
-    if let Some(p) = pair {
-        p.stop(&dm, &mut ws);
-    }
+    let (steps_on, _) = drive.tally();
+    let stepping_threads = 1 + usize::from(steps_on[1] > 0);
+    let steps_on_two = steps_on[1];
+    drive.stop(&dm, &mut ws);
     let stop = stop?;
     each(&mut outputs, extra, |o| o.finish(&ctx, stop.as_ref()))?;
     let envelopes = outputs
@@ -345,6 +349,7 @@ pub fn run(
         cut_log: tally.cut_log,
         wall_seconds: t0.elapsed().as_secs_f64(),
         stepping_threads,
+        steps_on_two,
         stop,
         carry: state.carry(),
     })
@@ -441,8 +446,8 @@ struct Stepper<'a, 'c> {
     ctx: &'c RunContext<'c>,
     state: &'a mut dynamics::DynState,
     ws: &'a mut DynWorkspace,
-    /// The second thread stepping the line's second part, when the run has one.
-    pair: Option<&'a mut Pair>,
+    /// One thread or two for each step ([`Drive`]).
+    drive: &'a mut Drive,
     res: &'a mut LineResults,
     outputs: &'a mut Outputs,
     tally: Tally,
@@ -460,10 +465,7 @@ impl Stepper<'_, '_> {
         let (dm, spec) = (self.ctx.model, self.ctx.spec);
         let n_steps = (spec.duration / spec.dt).round() as u64;
         for k in first..=n_steps {
-            let step = match self.pair.as_deref_mut() {
-                Some(p) => p.advance(dm, self.state, self.ws, spec.dt),
-                None => dynamics::advance(dm, self.state, self.ws, spec.dt),
-            };
+            let step = self.drive.advance(dm, self.state, self.ws, spec.dt);
             let info = match step {
                 Ok(info) => info,
                 Err(e) => return Ok(Some(Stop::Failed(e))),
@@ -535,10 +537,7 @@ impl Stepper<'_, '_> {
             scene_hash: crate::scene::text_hash(&scene.text),
             step: k,
             state: self.state.clone(),
-            solver: match self.pair.as_deref_mut() {
-                Some(p) => p.solver_memory(self.ws),
-                None => self.ws.solver_memory(),
-            },
+            solver: self.drive.solver_memory(self.ws),
             observers,
         };
         for o in extra.iter_mut() {

@@ -45,11 +45,12 @@ fn time_line(
         false => "writing",
     };
     format!(
-        "  time: statics {statics_seconds:.3} s; dynamics {:.2} s on {threads} thread{} ({:.0} \
+        "  time: statics {statics_seconds:.3} s; dynamics {:.2} s on {threads} thread{}{} ({:.0} \
          steps/s), of which recording {recording:.2} s ({writing} {writer:.2} s alongside, on its \
          own thread); plots and summary {outputs_seconds:.2} s\n",
         r.wall_seconds,
         if threads == 1 { "" } else { "s" },
+        catena_io::report::share_on_two(r.steps_on_two, r.steps),
         r.steps as f64 / r.wall_seconds.max(1e-9),
     )
 }

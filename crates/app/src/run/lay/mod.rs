@@ -125,9 +125,15 @@ pub fn lay_with(
     }
     l.checkpoint_to = opts.checkpoint;
     l.stop_after = opts.stop_after;
-    l.stepping.threads = opts.threads.unwrap_or_else(crate::run::default_threads);
+    // Held until the lay ends: a run beside it in this process takes the cores left.
+    let cores = crate::run::Cores::take(opts.threads);
+    l.stepping.drive = match opts.threads {
+        Some(_) => catena_fe::dynamics::Drive::asked(cores.threads()),
+        None => catena_fe::dynamics::Drive::new(cores.threads()),
+    };
     let stop = l.run_until(l.dspec.duration, on_step);
     let stepping_threads = l.stepping.most.max(1);
+    let steps_on_two = l.stepping.drive.tally().0[1];
     l.unpair();
     let stop = stop?;
     l.finish();
@@ -154,6 +160,7 @@ pub fn lay_with(
         windows: l.windows,
         taken_back: l.taken_back,
         stepping_threads,
+        steps_on_two,
         nodes: l.nodes,
         full: l.full,
         summary,
@@ -547,9 +554,7 @@ impl Lay {
             if let Some((path, every)) = &self.checkpoint_to {
                 if self.full_steps % every == 0 {
                     // The whole tangent in the solver's memory (its second side's columns).
-                    if let Some(p) = &self.stepping.pair {
-                        p.solver_memory(&mut self.ws);
-                    }
+                    self.stepping.drive.solver_memory(&mut self.ws);
                     self.checkpoint().write(path)?;
                 }
             }

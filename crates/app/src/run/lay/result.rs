@@ -52,6 +52,8 @@ pub struct LayRun {
     /// The most threads that stepped a window: 2 where a [`catena_fe::dynamics::Pair`] did
     /// ([`super::LayOptions::threads`]; a window too short to cut steps on one), else 1.
     pub stepping_threads: usize,
+    /// The steps two threads took ([`catena_fe::dynamics::Drive`]).
+    pub steps_on_two: u64,
     /// Wall time of the dynamics, s.
     pub wall_seconds: f64,
     /// Why the lay ended early, if it did.

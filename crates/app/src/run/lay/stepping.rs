@@ -18,7 +18,7 @@
 
 use std::sync::Arc;
 
-use catena_fe::dynamics::{self, DynamicModel, Pair, StepError};
+use catena_fe::dynamics::{self, Drive, DynamicModel, StepError};
 use catena_fe::motion::TopMotion;
 
 use super::{Lay, TENSION_FILTER};
@@ -27,10 +27,9 @@ use crate::error::AppError;
 /// The threads a window is stepped on.
 #[derive(Debug, Default)]
 pub(super) struct Stepping {
-    /// The threads the lay may keep busy ([`super::LayOptions::threads`]; 0 before it is set).
-    pub threads: usize,
-    /// The window's second stepping thread, where the lay has two ([`Lay::pair_up`]).
-    pub pair: Option<Pair>,
+    /// One thread or two for each step ([`Drive`], from [`super::LayOptions::threads`]; one
+    /// before it is set), across the windows.
+    pub drive: Drive,
     /// The most threads a window was stepped on so far (1 or 2): a window too short to cut
     /// (a band of fewer than [`catena_fe::sparse::TWIST_MIN`] equations) steps on one.
     pub most: usize,
@@ -63,10 +62,14 @@ impl Lay {
                 d0[1] + 2.0 * dt * vel[1],
             ),
         ]));
-        let info = match &mut self.stepping.pair {
-            Some(p) => p.advance(&self.dm, &mut self.state, &mut self.ws, dt)?,
-            None => dynamics::advance(&self.dm, &mut self.state, &mut self.ws, dt)?,
-        };
+        let info = self
+            .stepping
+            .drive
+            .advance(&self.dm, &mut self.state, &mut self.ws, dt)?;
+        self.stepping.most = self
+            .stepping
+            .most
+            .max(1 + usize::from(self.stepping.drive.on_two()));
         self.iterations += info.iterations;
         self.cuts += info.cuts;
         self.vessel_x += speed * dt;
@@ -85,28 +88,21 @@ impl Lay {
         Arc::make_mut(&mut self.dm)
     }
 
-    /// Starts the window's second stepping thread where the lay may keep two busy and the
-    /// window's band is cut in two ([`Pair::start`]); a window of its own each time it moves.
+    /// Engages the window's drive ([`Drive::start`]): a second stepping thread where the lay may
+    /// keep two busy and the window's band is cut in two ([`catena_fe::dynamics::Pair::start`]);
+    /// a window of its own each time it moves.
     pub(super) fn pair_up(&mut self) -> Result<(), AppError> {
-        if self.stepping.threads >= 2 && self.stepping.pair.is_none() {
-            // The second thread takes its share of the wave samples: the window's upper half,
-            // where the waves reach, is the first part (1.10× measured on the J-lay in Hs 2 m).
-            let pair = Pair::start(&self.dm, &self.state, &mut self.ws);
-            self.stepping.pair = pair.map_err(|e| AppError::Run {
-                file: self.file.clone(),
-                message: format!("could not start the lay's second thread: {e}"),
-            })?;
-        }
-        let now = 1 + usize::from(self.stepping.pair.is_some());
-        self.stepping.most = self.stepping.most.max(now);
+        let two = self
+            .stepping
+            .drive
+            .start(&self.dm, &self.state, &mut self.ws);
+        self.stepping.most = self.stepping.most.max(1 + usize::from(two));
         Ok(())
     }
 
-    /// Ends the window's second stepping thread, if there is one: the caller's State and
-    /// Workspace are whole (they are after every step).
+    /// Ends the window's second stepping thread, if there is one (before the window moves, and
+    /// at the lay's end).
     pub(super) fn unpair(&mut self) {
-        if let Some(p) = self.stepping.pair.take() {
-            p.stop(&self.dm, &mut self.ws);
-        }
+        self.stepping.drive.stop(&self.dm, &mut self.ws);
     }
 }
