@@ -46,7 +46,7 @@ pub const YIELD_AFTER: Duration = Duration::from_micros(20);
 /// How long a waiting side spins (then yields) before it parks: a wait this long means the other
 /// side is not running (on a processor shared with other work, descheduled for a time slice,
 /// milliseconds), so the waiter gives its core away until the other side rings ([`Bell`]).
-pub const PARK_AFTER: Duration = Duration::from_micros(60);
+pub const PARK_AFTER: Duration = Duration::from_micros(500);
 
 /// A waiter's bell: a side that waits long parks after saying so here, and the side that makes
 /// it ready rings it ([`Bell::ring`]), waking it only when it sleeps (one fence and one load

@@ -132,8 +132,9 @@ pub fn lay_with(
         None => catena_fe::dynamics::Drive::new(cores.threads()),
     };
     let stop = l.run_until(l.dspec.duration, on_step);
-    let stepping_threads = l.stepping.most.max(1);
+    // As a run's: 2 where a pair took any step (a window too short to cut steps on one).
     let steps_on_two = l.stepping.drive.tally().0[1];
+    let stepping_threads = 1 + usize::from(steps_on_two > 0);
     l.unpair();
     let stop = stop?;
     l.finish();

@@ -30,9 +30,6 @@ pub(super) struct Stepping {
     /// One thread or two for each step ([`Drive`], from [`super::LayOptions::threads`]; one
     /// before it is set), across the windows.
     pub drive: Drive,
-    /// The most threads a window was stepped on so far (1 or 2): a window too short to cut
-    /// (a band of fewer than [`catena_fe::sparse::TWIST_MIN`] equations) steps on one.
-    pub most: usize,
 }
 
 impl Lay {
@@ -66,10 +63,6 @@ impl Lay {
             .stepping
             .drive
             .advance(&self.dm, &mut self.state, &mut self.ws, dt)?;
-        self.stepping.most = self
-            .stepping
-            .most
-            .max(1 + usize::from(self.stepping.drive.on_two()));
         self.iterations += info.iterations;
         self.cuts += info.cuts;
         self.vessel_x += speed * dt;
@@ -92,11 +85,9 @@ impl Lay {
     /// keep two busy and the window's band is cut in two ([`catena_fe::dynamics::Pair::start`]);
     /// a window of its own each time it moves.
     pub(super) fn pair_up(&mut self) -> Result<(), AppError> {
-        let two = self
-            .stepping
+        self.stepping
             .drive
             .start(&self.dm, &self.state, &mut self.ws);
-        self.stepping.most = self.stepping.most.max(1 + usize::from(two));
         Ok(())
     }
 
