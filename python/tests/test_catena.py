@@ -208,45 +208,76 @@ def test_the_public_names_are_the_api():
         assert getattr(catena, name).__doc__, name
 
 
-def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits():
+def _timed_run(path, barrier):
+    """One run of the scene at `path` at the default threads, started when its partner is ready:
+    (start, end) on the machine's monotonic clock, the threads it stepped on, and its moments."""
+    import time
+
+    scene = catena.Scene.from_file(path)
+    barrier.wait()
+    t0 = time.perf_counter()
+    r = catena.run(scene, progress=lambda t, d: None, every=50)
+    return t0, time.perf_counter(), r.summary["stepping_threads"], r["bending_moment"]
+
+
+def _side_by_side(submit, path, barrier):
+    """Two runs started together; the time from the first start to the last end."""
+    runs = [f.result() for f in [submit(_timed_run, path, barrier) for _ in range(2)]]
+    return max(r[1] for r in runs) - min(r[0] for r in runs), runs
+
+
+def test_two_runs_in_two_threads_run_in_parallel_with_the_same_bits(tmp_path):
     """The interpreter is released while catena steps, and a run called from a Python thread other
-    than the main one takes one thread by default (issue 69): two runs in two threads at the
-    default take under 1.5x one run at the default (on two cores), and give the same numbers as
-    one at a time, on one thread or two."""
+    than the main one, or from a pool's worker process, takes one thread by default (issue 69): two
+    runs in two threads at the default take under 1.5x one run at the default (on two cores), and
+    give the same numbers as one at a time, on one thread or two.
+
+    The host is measured too: the same two runs in two worker processes, which share nothing. Where
+    even they take 1.4x one run or more (a shared machine whose two cores are not both free, as
+    CI's was once: 1.64x for the threads), the threads must match the processes (within 10 %)
+    instead: nothing in catena may serialise two runs that two processes run side by side."""
+    import multiprocessing
     import threading
     import time
+    from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
     if (os.cpu_count() or 1) < 2:
         pytest.skip("needs two cores")
     scene = catena.Scene.from_file(HEAVE).edited({"dynamic.duration": 150.0})
+    path = tmp_path / "heave.toml"
+    path.write_text(scene.text)
     alone = catena.run(scene, threads=1)
     assert alone.summary["stepping_threads"] == 1
     paired = catena.run(scene, threads=2)
     assert paired.summary["stepping_threads"] == 2
-    out = [None, None]
 
-    def go(k):
-        out[k] = catena.run(scene, progress=lambda t, d: None, every=50)
-
-    # The fastest of five of each: on this two-core host two single-thread runs side by side,
-    # even in two processes, take 1.2-1.6x one run alone (the noise of a shared machine).
-    one, both = float("inf"), float("inf")
-    for _ in range(5):
-        t0 = time.perf_counter()
-        default = catena.run(scene)
-        one = min(one, time.perf_counter() - t0)
-        threads = [threading.Thread(target=go, args=(k,)) for k in range(2)]
-        t0 = time.perf_counter()
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
-        both = min(both, time.perf_counter() - t0)
-    assert [r.summary["stepping_threads"] for r in out] == [1, 1]
-    for r in [*out, paired, default]:
+    spawn = multiprocessing.get_context("spawn")
+    with spawn.Manager() as manager, ThreadPoolExecutor(2) as threads, \
+            ProcessPoolExecutor(2, mp_context=spawn) as processes:
+        thread_barrier, process_barrier = threading.Barrier(2), manager.Barrier(2)
+        # The fastest of eight of each, interleaved, so that a busy spell of the host spoils one
+        # round of each kind rather than all of one kind.
+        one, both, apart = float("inf"), float("inf"), float("inf")
+        for _ in range(8):
+            t0 = time.perf_counter()
+            default = catena.run(scene)
+            one = min(one, time.perf_counter() - t0)
+            took, in_threads = _side_by_side(threads.submit, path, thread_barrier)
+            both = min(both, took)
+            took, in_processes = _side_by_side(processes.submit, path, process_barrier)
+            apart = min(apart, took)
+    for _, _, stepping, moment in [*in_threads, *in_processes]:
+        assert stepping == 1
+        assert np.array_equal(moment, alone["bending_moment"], equal_nan=True)
+    for r in [paired, default]:
         for name in ["time", "bending_moment", "penetration", "ranges/bending_moment/min"]:
             assert np.array_equal(r[name], alone[name], equal_nan=True), name
-    assert both < 1.5 * one, f"two runs in two threads took {both:.2f} s, one run {one:.2f} s"
+    said = f"two runs in two threads took {both:.2f} s, in two processes {apart:.2f} s, one run {one:.2f} s"
+    print(said)
+    if apart < 1.4 * one:
+        assert both < 1.5 * one, said
+    else:
+        assert both < 1.1 * apart, said
 
 
 def test_studies_sweeps_and_sequences_on_an_executor_give_the_same_bits(tmp_path):
