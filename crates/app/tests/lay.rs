@@ -473,6 +473,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             restart: None,
             stop_after: Some(2500),
             threads: Some(2),
+            pair_schedule: Some(|_| true),
         },
         &mut |_| true,
     )
@@ -494,6 +495,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             restart: Some((bent, "bent".into())),
             stop_after: None,
             threads: Some(1),
+            pair_schedule: None,
         },
         &mut |_| true,
     )
@@ -509,6 +511,7 @@ fn a_lay_restarted_from_its_checkpoint_gives_the_same_bits() {
             restart: Some((cp, "checkpoint".into())),
             stop_after: None,
             threads: Some(1),
+            pair_schedule: None,
         },
         &mut |_| true,
     )
@@ -713,6 +716,7 @@ fn a_tilted_tower_lay_restarts_to_the_bit() {
         restart,
         stop_after,
         threads: Some(1),
+        pair_schedule: None,
     };
     let first = lay::lay_with(
         solve(),
@@ -974,8 +978,10 @@ fn a_lay_on_two_threads_is_the_lay_on_one_to_the_bit() {
     for (name, text) in lays {
         let on = |threads| {
             let st = statics::solve(lay::statics_scene(scene_with_files(&text))).expect("statics");
+            // Two: a second thread on every step (the drive's timing could leave it few).
             let opts = lay::LayOptions {
                 threads: Some(threads),
+                pair_schedule: (threads == 2).then_some((|_| true) as fn(u64) -> bool),
                 ..Default::default()
             };
             let r = lay::lay_with(st, opts, &mut |_| true).expect("lay");

@@ -349,6 +349,28 @@ mod tests {
         w.push(k * 1000 + u64::from(code));
     }
 
+    /// A ring wakes a sleeping waiter at once: the waiter's park token is set, so its next park
+    /// (here ten seconds long) returns at once instead of at its timeout. (A bell that rang nobody
+    /// would still be correct, every park ends after [`Bell::NAP`], but each wait for a
+    /// descheduled partner would last a nap.)
+    #[test]
+    fn a_ring_wakes_a_sleeping_waiter_at_once() {
+        let bell = Arc::new(Bell::default());
+        *lock(&bell.thread) = Some(std::thread::current());
+        bell.sleeping.store(true, Ordering::Relaxed);
+        // Joined by its handle (a scope's end would park this thread, taking the token).
+        let ringer = Arc::clone(&bell);
+        std::thread::spawn(move || ringer.ring())
+            .join()
+            .expect("ringer");
+        let t0 = Instant::now();
+        std::thread::park_timeout(Duration::from_secs(10));
+        assert!(
+            t0.elapsed() < Duration::from_secs(5),
+            "the ring woke nobody"
+        );
+    }
+
     /// Every job asked is run once, in order, on the partner's work, and the caller sees the
     /// work it left after each wait: 20 000 jobs, some asked at once, some after the partner
     /// has parked.

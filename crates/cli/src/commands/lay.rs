@@ -39,6 +39,7 @@ pub fn run_lay(
         restart,
         stop_after: opts.stop_after,
         threads: opts.threads,
+        pair_schedule: None,
     };
     let mut last_shown = 0.0;
     let mut on_step = |p: &lay::LayProgress| {

@@ -101,6 +101,10 @@ pub struct LayOptions {
     /// The threads the lay may keep busy (`None`: the machine's cores): from two, the window is
     /// stepped by a [`catena_fe::dynamics::Pair`], the same bits as on one.
     pub threads: Option<usize>,
+    /// The steps a second thread takes, fixed (`Some(|_| true)`: every step a window can be cut;
+    /// for tests of the pair, whose timing-driven choice could leave it few steps); `None`: the
+    /// drive's choice ([`catena_fe::dynamics::Drive`]).
+    pub pair_schedule: Option<fn(u64) -> bool>,
 }
 
 /// Lays the pipe of a solved lay scene (see [`statics_scene`]); `on_step` sees every converged
@@ -127,9 +131,10 @@ pub fn lay_with(
     l.stop_after = opts.stop_after;
     // Held until the lay ends: a run beside it in this process takes the cores left.
     let cores = crate::run::Cores::take(opts.threads);
-    l.stepping.drive = match opts.threads {
-        Some(_) => catena_fe::dynamics::Drive::asked(cores.threads()),
-        None => catena_fe::dynamics::Drive::new(cores.threads()),
+    l.stepping.drive = match (opts.pair_schedule, opts.threads) {
+        (Some(two), _) => catena_fe::dynamics::Drive::with_schedule(two),
+        (None, Some(_)) => catena_fe::dynamics::Drive::asked(cores.threads()),
+        (None, None) => catena_fe::dynamics::Drive::new(cores.threads()),
     };
     let stop = l.run_until(l.dspec.duration, on_step);
     // As a run's: 2 where a pair took any step (a window too short to cut steps on one).
