@@ -21,20 +21,34 @@ root=os.path.join(os.path.dirname(os.path.abspath(__file__)),'..','crates')
 # The layers of the library, lowest first (ARCHITECTURE.md, crates/app/src/lib.rs).
 LAYERS={'app':['error','checks','scene','run','studies']}
 bad=0
-for crate in sorted(os.listdir(root)):
+
+def sources(crate):
+    """Each `.rs` file of `crate` once: its module path ('' for lib.rs and main.rs) and its text
+    without comment lines. Both checks below read these, so each file is read once."""
     src=os.path.join(root,crate,'src')
-    mods={}
+    out={}
     for dp,_,fs in os.walk(src):
-        for f in fs:
+        for f in sorted(fs):
             if not f.endswith('.rs'): continue
             p=os.path.join(dp,f); rel=os.path.relpath(p,src)[:-3].replace(os.sep,'::')
             rel=rel.replace('::mod','')
-            if rel in ('lib','main'): continue
-            top=rel.split('::')[0]
-            txt='\n'.join(l for l in open(p).read().splitlines() if not l.strip().startswith('//'))
-            deps=set(m for m in re.findall(r'crate::([a-z_]+)',txt))
-            deps|=set(m for m in re.findall(r'super::([a-z_]+)',txt) if '::' in rel)
-            mods.setdefault(top,set()).update(d for d in deps if d!=top)
+            if rel in ('lib','main'): rel=''
+            with open(p) as fh:
+                txt='\n'.join(l for l in fh.read().splitlines() if not l.strip().startswith('//'))
+            # lib.rs and main.rs are both the crate's root.
+            out[rel]=out[rel]+'\n'+txt if rel in out else txt
+    return out
+
+SOURCES={crate:sources(crate) for crate in sorted(os.listdir(root))}
+
+for crate,files in SOURCES.items():
+    mods={}
+    for rel,txt in files.items():
+        if rel=='': continue
+        top=rel.split('::')[0]
+        deps=set(m for m in re.findall(r'crate::([a-z_]+)',txt))
+        deps|=set(m for m in re.findall(r'super::([a-z_]+)',txt) if '::' in rel)
+        mods.setdefault(top,set()).update(d for d in deps if d!=top)
     # find cycles among top-level modules
     def dfs(n,stack,seen):
         global bad
@@ -56,15 +70,7 @@ for crate in sorted(os.listdir(root)):
 
 def file_cycles(crate):
     """The cycles among the files of `crate`, each as the list of its files' module paths."""
-    src=os.path.join(root,crate,'src')
-    files={}
-    for dp,_,fs in os.walk(src):
-        for f in fs:
-            if not f.endswith('.rs'): continue
-            p=os.path.join(dp,f); rel=os.path.relpath(p,src)[:-3].replace(os.sep,'::')
-            rel=rel.replace('::mod','')
-            if rel in ('lib','main'): rel=''
-            files[rel]=p
+    files=SOURCES[crate]
     def resolve(base,segs):
         """The deepest module file named by `base` then `segs`."""
         best=base
@@ -75,8 +81,7 @@ def file_cycles(crate):
             else: break
         return best
     edges={m:set() for m in files}
-    for m,p in files.items():
-        txt='\n'.join(l for l in open(p).read().splitlines() if not l.strip().startswith('//'))
+    for m,txt in files.items():
         txt=re.sub(r'#\[cfg\(test\)\]\s*mod tests\s*\{.*','',txt,flags=re.S)
         parent=m.rsplit('::',1)[0] if '::' in m else ''
         for kw,base in (('crate',''),('super',parent),('self',m)):
@@ -109,7 +114,7 @@ def file_cycles(crate):
         if v not in index: visit(v)
     return out
 
-for crate in sorted(os.listdir(root)):
+for crate in SOURCES:
     for comp in file_cycles(crate):
         print(crate,'files that import each other:',', '.join(comp)); bad+=1
 
