@@ -277,7 +277,8 @@ pub fn run(
     // keeps a thread of its own only from three.
     let others: usize = extra.iter().map(|o| o.busy_threads()).sum();
     let stepping = threads.saturating_sub(others);
-    // Two threads asked for are tried whatever the machine's idle time ([`Drive::asked`]).
+    // Two threads asked for are tried first whatever the machine's idle time, later only
+    // beside an idle core ([`Drive::asked`]).
     let mut drive = match opts.threads {
         Some(_) => Drive::asked(stepping),
         None => Drive::new(stepping),
