@@ -77,12 +77,10 @@ pub struct Drive {
     /// per iteration and per block.
     probe_began: Option<Instant>,
     failed: Option<(Instant, usize, f64, f64)>,
-    /// The machine's idle time since the last look ([`Idle`]), and whether the caller asked for
-    /// two threads (then tried whatever the idle time).
+    /// The machine's idle time since the last look ([`Idle`]), and whether the next probe of two
+    /// threads is tried whatever it (the first of a drive the caller asked for two).
     idle: Idle,
-    asked: bool,
-    /// Whether two threads have been tried (an asked drive's first probe is not gated).
-    tried: bool,
+    ungated: bool,
     /// Blocks on the current side since the last probe, and how many before the next.
     since: u32,
     interval: u32,
@@ -132,8 +130,7 @@ impl Drive {
             probe_began: None,
             failed: None,
             idle: Idle::default(),
-            asked: false,
-            tried: false,
+            ungated: false,
             since: 0,
             interval: 1,
             steps_on: [0; 2],
@@ -148,7 +145,7 @@ impl Drive {
     /// that, as [`Drive::new`]'s, only beside an idle core ([`Idle`]).
     pub fn asked(threads: usize) -> Self {
         Self {
-            asked: true,
+            ungated: true,
             ..Self::new(threads)
         }
     }
@@ -179,7 +176,8 @@ impl Drive {
             self.on_two = two(self.count);
         }
         self.count += 1;
-        if self.probe.is_some() && self.steps == 0 {
+        if self.probe.is_some() && self.warming {
+            // The probe's first step (before `time` counts it, or not).
             self.probe_began = Some(Instant::now());
         }
         self.engage(dm, state, ws);
@@ -290,7 +288,7 @@ impl Drive {
                 }
                 // Two threads are tried only where a second core was mostly idle meanwhile; where
                 // the caller asked for them, the first time whatever the idle time.
-                if !self.on_two && (!self.asked || self.tried) {
+                if !self.on_two && !self.ungated {
                     match self.idle.second_core_free() {
                         Some(true) => {}
                         Some(false) => {
@@ -304,7 +302,7 @@ impl Drive {
                 }
                 self.probe = Some((per, seconds));
                 self.warming = true;
-                self.tried |= !self.on_two;
+                self.ungated &= self.on_two;
                 self.on_two = !self.on_two;
             }
         }
