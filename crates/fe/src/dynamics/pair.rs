@@ -33,7 +33,8 @@
 //! The water kinematics of a scene with waves are taken at each thread's own nodes (the loads
 //! read them there only): the samples on the wave grid too, from the committed State, so each
 //! node's samples are the same whichever thread takes them, and the second part's are handed
-//! over with its State. The samples cost most near the surface, which is all in the first part
+//! over with its State when they are renewed (with the grid's index: storm 23, a step in five).
+//! The samples cost most near the surface, which is all in the first part
 //! (a riser's top). A pair started with [`Samples::Shared`] ([`Pair::start`]'s) has the second
 //! thread also sample the first part's nodes `lent` (next to the cut, chosen at
 //! [`Pair::start_with`] so that each thread's samples cost about half,
@@ -259,6 +260,9 @@ fn serve(w: &mut Side, code: u8) {
 pub struct Pair {
     partner: Partner<Side>,
     split: Split,
+    /// The wave grid's index when the second part's samples were last handed over (they change
+    /// only with it).
+    grid_handed: Option<u64>,
 }
 
 impl std::fmt::Debug for Pair {
@@ -333,7 +337,11 @@ impl Pair {
             outcome: Ok(StepInfo::default()),
         };
         match Partner::start(side, serve) {
-            Ok(partner) => Ok(Some(Self { partner, split })),
+            Ok(partner) => Ok(Some(Self {
+                partner,
+                split,
+                grid_handed: state.wave_grid.as_ref().map(|g| g.index),
+            })),
             Err(e) => {
                 ws.leave(&dm.line);
                 Err(e)
@@ -378,10 +386,16 @@ impl Pair {
         let per = state.friction_anchor.len() / n;
         let anchors = per * (k + 1)..per * n;
         state.friction_anchor[anchors.clone()].copy_from_slice(&w.state.friction_anchor[anchors]);
+        // The samples change only with the grid's index: on both threads at the same steps, the
+        // first thread's commit then taking its own samples' arrays (of which the second part's
+        // entries are stale) into `state`. Handed over then only (storm 23: a step in five).
         if let (Some(to), Some(from)) = (&mut state.wave_grid, &w.state.wave_grid) {
-            to.index = from.index;
-            for (to, from) in to.samples.iter_mut().zip(&from.samples) {
-                to[nodes.clone()].copy_from_slice(&from[nodes.clone()]);
+            if self.grid_handed != Some(from.index) || to.index != from.index {
+                to.index = from.index;
+                for (to, from) in to.samples.iter_mut().zip(&from.samples) {
+                    to[nodes.clone()].copy_from_slice(&from[nodes.clone()]);
+                }
+                self.grid_handed = Some(from.index);
             }
         }
         ws.mass[nodes.clone()].copy_from_slice(&w.ws.mass[nodes.clone()]);
