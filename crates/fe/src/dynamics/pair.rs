@@ -386,9 +386,10 @@ impl Pair {
         let per = state.friction_anchor.len() / n;
         let anchors = per * (k + 1)..per * n;
         state.friction_anchor[anchors.clone()].copy_from_slice(&w.state.friction_anchor[anchors]);
-        // The samples change only with the grid's index: on both threads at the same steps, the
-        // first thread's commit then taking its own samples' arrays (of which the second part's
-        // entries are stale) into `state`. Handed over then only (storm 23: a step in five).
+        // The samples are renewed only when the grid's index moves (both threads at the same
+        // steps; storm 23: a step in five), and the first thread's commit then brings its own
+        // arrays into `state`, stale on the second part: handed over then only. A `state` whose
+        // index is not the second thread's (set by the caller between steps) is handed them too.
         if let (Some(to), Some(from)) = (&mut state.wave_grid, &w.state.wave_grid) {
             if self.grid_handed != Some(from.index) || to.index != from.index {
                 to.index = from.index;
