@@ -29,6 +29,11 @@
 //!
 //! **Meetings.** Two threads that each run the same loop on their own part of a line meet where
 //! the parts touch, each leaving a few numbers for the other: a [`Seat`] each ([`seats`]).
+//!
+//! **Chores.** A side that waits, at a meeting or for its next job, may do [`Chores`] meanwhile:
+//! work in pieces well under a microsecond each, between two reads of what it waits for (a run's
+//! fatigue counting of the step before, each side its half of the line's nodes). The wait then
+//! ends at most a piece later than it would have; a side with no chore left spins as before.
 
 use std::cell::Cell;
 use std::sync::atomic::{fence, AtomicBool, AtomicU64, Ordering};
@@ -47,6 +52,34 @@ pub const YIELD_AFTER: Duration = Duration::from_micros(20);
 /// side is not running (on a processor shared with other work, descheduled for a time slice,
 /// milliseconds), so the waiter gives its core away until the other side rings ([`Bell`]).
 pub const PARK_AFTER: Duration = Duration::from_micros(500);
+
+/// Work a waiting side does in small pieces ([`seats_with_chores`], [`Partner::start_with_chores`]; see the
+/// module docs).
+pub trait Chores: Send + Sync {
+    /// Does one piece of side `side`'s chores (well under a microsecond); `false` when none was
+    /// left to do.
+    fn chore(&self, side: usize) -> bool;
+}
+
+/// A side's chores, if any, and the side.
+pub type SideChores = Option<(Arc<dyn Chores>, usize)>;
+
+/// Chores both sides of a pair share, each doing its own ([`Chores::chore`]'s `side`).
+#[derive(Clone)]
+pub struct SharedChores(pub Arc<dyn Chores>);
+
+impl SharedChores {
+    /// Side `side`'s chores.
+    pub fn side(&self, side: usize) -> SideChores {
+        Some((Arc::clone(&self.0), side))
+    }
+}
+
+impl std::fmt::Debug for SharedChores {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SharedChores")
+    }
+}
 
 /// A waiter's bell: a side that waits long parks after saying so here, and the side that makes
 /// it ready rings it ([`Bell::ring`]), waking it only when it sleeps (one fence and one load
@@ -75,13 +108,27 @@ impl Bell {
         }
     }
 
-    /// Waits until `ready`: spins, yields the processor after [`YIELD_AFTER`], parks after
-    /// [`PARK_AFTER`] until rung; panics with `gone` when `alive` says the other side has gone.
+    /// Waits until `ready`, doing `chores` while there are any: spins, yields the processor after
+    /// [`YIELD_AFTER`], parks after [`PARK_AFTER`] until rung; panics with `gone` when `alive`
+    /// says the other side has gone.
     #[inline]
-    fn wait(&self, ready: impl Fn() -> bool, alive: impl Fn() -> bool, gone: &str) {
+    fn wait(
+        &self,
+        ready: impl Fn() -> bool,
+        alive: impl Fn() -> bool,
+        gone: &str,
+        chores: &SideChores,
+    ) {
         let mut spins = 0u32;
         let mut since = None;
+        let mut busy = chores.is_some();
         while !ready() {
+            if busy {
+                if let Some((c, side)) = chores {
+                    busy = c.chore(*side);
+                    continue;
+                }
+            }
             std::hint::spin_loop();
             spins = spins.wrapping_add(1);
             if spins % 64 != 0 {
@@ -119,6 +166,9 @@ struct Shared<W> {
     done: AtomicU64,
     /// The partner's work.
     work: Mutex<W>,
+    /// What the partner thread does while it waits for a job, and what the caller does while it
+    /// waits for a job to be done.
+    chores: [SideChores; 2],
     /// The caller's bell, rung when a job is done.
     bell: Bell,
 }
@@ -143,10 +193,21 @@ impl<W: Send + 'static> std::fmt::Debug for Partner<W> {
 impl<W: Send + 'static> Partner<W> {
     /// Starts the thread with its work and the function that runs a job (`code` < 255) on it.
     pub fn start(work: W, job: fn(&mut W, u8)) -> std::io::Result<Self> {
+        Self::start_with_chores(work, job, [None, None])
+    }
+
+    /// [`Partner::start`], the caller doing `chores[0]` while it waits for a job to be done and
+    /// the partner thread `chores[1]` while it waits for the next.
+    pub fn start_with_chores(
+        work: W,
+        job: fn(&mut W, u8),
+        chores: [SideChores; 2],
+    ) -> std::io::Result<Self> {
         let shared = Arc::new(Shared {
             asked: AtomicU64::new(0),
             done: AtomicU64::new(0),
             work: Mutex::new(work),
+            chores,
             bell: Bell::default(),
         });
         let theirs = Arc::clone(&shared);
@@ -183,6 +244,7 @@ impl<W: Send + 'static> Partner<W> {
             || self.shared.done.load(Ordering::Acquire) == seq,
             || !self.handle.as_ref().is_none_or(JoinHandle::is_finished),
             "the partner thread stopped before its job was done (it panicked)",
+            &self.shared.chores[0],
         );
         self.work()
     }
@@ -217,10 +279,19 @@ fn serve<W>(s: &Shared<W>, job: fn(&mut W, u8)) {
     loop {
         let mut spins = 0u32;
         let mut since = Instant::now();
+        let mut busy = s.chores[1].is_some();
         let asked = loop {
             let a = s.asked.load(Ordering::Acquire);
             if a >> 8 != last {
                 break a;
+            }
+            if busy {
+                if let Some((c, side)) = &s.chores[1] {
+                    busy = c.chore(*side);
+                    // The idle time counts from the last chore.
+                    since = Instant::now();
+                    continue;
+                }
             }
             std::hint::spin_loop();
             spins = spins.wrapping_add(1);
@@ -275,6 +346,8 @@ struct Table {
     capacity: usize,
     /// Each side's bell, rung by the other when it arrives.
     bells: [Bell; 2],
+    /// What each side does while it waits.
+    chores: [SideChores; 2],
 }
 
 impl std::fmt::Debug for Seat {
@@ -288,12 +361,18 @@ impl std::fmt::Debug for Seat {
 
 /// Two seats of one meeting place, each leaving at most `capacity` numbers at a meeting.
 pub fn seats(capacity: usize) -> (Seat, Seat) {
+    seats_with_chores(capacity, [None, None])
+}
+
+/// [`seats`], side `i` doing `chores[i]` while it waits at a meeting.
+pub fn seats_with_chores(capacity: usize, chores: [SideChores; 2]) -> (Seat, Seat) {
     let mailbox = || Mutex::new(Vec::with_capacity(capacity));
     let table = Arc::new(Table {
         arrived: [AtomicU64::new(0), AtomicU64::new(0)],
         mail: [[mailbox(), mailbox()], [mailbox(), mailbox()]],
         capacity,
         bells: [Bell::default(), Bell::default()],
+        chores,
     });
     let seat = |me| Seat {
         table: Arc::clone(&table),
@@ -329,6 +408,7 @@ impl Seat {
             || self.table.arrived[other].load(Ordering::Acquire) >= c,
             || Arc::strong_count(&self.table) == 2,
             "the other side of the meeting has gone",
+            &self.table.chores[self.me],
         );
         theirs.copy_from_slice(&lock(&self.table.mail[other][parity]));
     }
@@ -466,5 +546,75 @@ mod tests {
             a.exchange(&[1.0], &mut [0.0]);
         }));
         assert!(r.is_err());
+    }
+
+    /// Chores that count up to `limit`, a piece at a time, per side.
+    struct Tally {
+        done: [AtomicU64; 2],
+        limit: u64,
+    }
+
+    impl Chores for Tally {
+        fn chore(&self, side: usize) -> bool {
+            let d = &self.done[side];
+            if d.load(Ordering::Relaxed) >= self.limit {
+                return false;
+            }
+            d.fetch_add(1, Ordering::Relaxed);
+            true
+        }
+    }
+
+    /// A side that waits does its chores meanwhile, a piece between two reads of what it waits
+    /// for, and still takes what it waits for: at a meeting (side 0 waits 5 ms for side 1, which
+    /// does not wait) all of side 0's 1000 pieces are done and none of side 1's; a caller waiting
+    /// 5 ms for a job does its 1000; a partner thread waiting for its next job does its 1000.
+    #[test]
+    fn a_waiting_side_does_its_chores() {
+        let tally = Arc::new(Tally {
+            done: [AtomicU64::new(0), AtomicU64::new(0)],
+            limit: 1000,
+        });
+        let chores = SharedChores(Arc::clone(&tally) as Arc<dyn Chores>);
+        let (mut a, mut b) = seats_with_chores(1, [chores.side(0), chores.side(1)]);
+        let late = std::thread::spawn(move || {
+            std::thread::sleep(Duration::from_millis(5));
+            let mut theirs = [0.0];
+            b.exchange(&[2.0], &mut theirs);
+            theirs[0]
+        });
+        let mut theirs = [0.0];
+        a.exchange(&[1.0], &mut theirs);
+        assert_eq!(theirs[0], 2.0);
+        assert_eq!(late.join().expect("side 1"), 1.0);
+        let done = |side: usize| tally.done[side].load(Ordering::Relaxed);
+        assert_eq!((done(0), done(1)), (1000, 0), "at a meeting");
+
+        let tally = Arc::new(Tally {
+            done: [AtomicU64::new(0), AtomicU64::new(0)],
+            limit: 1000,
+        });
+        let chores = SharedChores(Arc::clone(&tally) as Arc<dyn Chores>);
+        let slow = |w: &mut Vec<u64>, code: u8| {
+            std::thread::sleep(Duration::from_millis(5));
+            add(w, code);
+        };
+        let p = Partner::start_with_chores(Vec::new(), slow, [chores.side(0), chores.side(1)])
+            .expect("thread");
+        p.ask(7);
+        assert_eq!(p.wait()[0], 7);
+        assert_eq!(
+            tally.done[0].load(Ordering::Relaxed),
+            1000,
+            "waiting for a job"
+        );
+        let t0 = Instant::now();
+        while tally.done[1].load(Ordering::Relaxed) < 1000 {
+            assert!(
+                t0.elapsed() < Duration::from_secs(10),
+                "the partner's chores"
+            );
+            std::thread::yield_now();
+        }
     }
 }

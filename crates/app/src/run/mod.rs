@@ -288,7 +288,11 @@ pub fn run(
         spec: &spec,
         model: &dm,
         threads: threads - usize::from(on_two),
+        paired: on_two,
     });
+    // The first chores an observer leaves: the pair's two threads do them while they wait.
+    let chores = outputs.iter_mut().find_map(|o| o.chores());
+    ws.set_chores(chores);
     if let Some(cp) = &opts.restart {
         restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
     }

@@ -167,6 +167,15 @@ pub trait Observer {
     fn busy_threads(&self) -> usize {
         0
     }
+
+    /// Work this observer leaves for the line's two stepping threads to do while they wait for
+    /// each other, if any ([`catena_fe::partner::Chores`]: the fatigue counting of the step
+    /// before, when a pair may step the line). The run hands the first observer's to the
+    /// Workspace ([`catena_fe::dynamics::DynWorkspace::set_chores`]); an observer that leaves
+    /// chores must also do whatever of them is left when it is handed the next step.
+    fn chores(&self) -> Option<catena_fe::partner::SharedChores> {
+        None
+    }
 }
 
 /// Non-finite values (the ±∞ of empty extremes) as JSON nulls and back.

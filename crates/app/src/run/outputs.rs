@@ -44,8 +44,12 @@ pub struct Setup<'a> {
     pub spec: &'a DynamicSpec,
     /// The dynamic Model.
     pub model: &'a DynamicModel,
-    /// The threads the run may keep busy (at least 1: [`crate::run::RunOptions::threads`]).
+    /// The threads the run may keep busy (at least 1: [`crate::run::RunOptions::threads`]),
+    /// besides the line's second stepping thread when `paired`.
     pub threads: usize,
+    /// Whether two threads may step the line ([`catena_fe::dynamics::Drive::start`]): their waits
+    /// for each other can take the observers' chores ([`Observer::chores`]).
+    pub paired: bool,
 }
 
 /// One built-in output: its name (the key of its state in checkpoints) and how it is built for a
@@ -83,7 +87,12 @@ pub const BUILTINS: &[Registration] = &[
         build: |s| {
             let n = s.model.line.nodes();
             let f = s.spec.fatigue.clone()?;
-            Some(Box::new(Fatigue::with_thread(f, n, s.threads > 1)))
+            // A core to spare: a counting thread; else, beside a pair, the pair's waits.
+            Some(Box::new(if s.paired && s.threads == 1 {
+                Fatigue::lent(f, n)
+            } else {
+                Fatigue::with_thread(f, n, s.threads > 1)
+            }))
         },
     },
     Registration {

@@ -48,7 +48,7 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use crate::newton::max_abs;
-use crate::partner::{seats, Partner, Seat};
+use crate::partner::{seats_with_chores, Partner, Seat};
 use crate::waves::WaveKinematics;
 
 use super::cut::{Lane, Scope, Split, SAMPLE_NUMBERS};
@@ -323,7 +323,10 @@ impl Pair {
         };
         // The largest meeting: a factorisation's outcome and five band columns (31 numbers), or
         // the lent samples.
-        let (mine, other) = seats(32.max(2 * SAMPLE_NUMBERS * lent.len()));
+        // What each thread does while it waits (`DynWorkspace::set_chores`).
+        let chores = || [0, 1].map(|side| ws.chores.as_ref().and_then(|c| c.side(side)));
+        let (mine, other) = seats_with_chores(32.max(2 * SAMPLE_NUMBERS * lent.len()), chores());
+        let sides = chores();
         ws.enter(&dm.line, split, (0, mine), lent.clone());
         theirs.enter(&dm.line, split, (1, other), lent);
         // The top element and the top two nodes (what a Workspace keeps of a top rest length
@@ -336,7 +339,7 @@ impl Pair {
             dt: 0.0,
             outcome: Ok(StepInfo::default()),
         };
-        match Partner::start(side, serve) {
+        match Partner::start_with_chores(side, serve, sides) {
             Ok(partner) => Ok(Some(Self {
                 partner,
                 split,

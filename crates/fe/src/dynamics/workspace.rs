@@ -12,6 +12,7 @@ use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 
 use super::cut::{Lane, Scope, Split};
 use super::*;
+use crate::partner::SharedChores;
 
 /// Scratch for the dynamics (never saved).
 #[derive(Debug)]
@@ -73,9 +74,19 @@ pub struct DynWorkspace {
     pub(super) scope: Scope,
     /// Where it meets the thread that steps the other part, when there is one ([`Pair`]).
     pub(super) lane: Option<Lane>,
+    /// What the two threads of a pair started from this workspace do while they wait
+    /// ([`DynWorkspace::set_chores`]).
+    pub(super) chores: Option<SharedChores>,
 }
 
 impl DynWorkspace {
+    /// Makes the threads of each pair started from now on from this workspace ([`Pair::start`])
+    /// do `chores` while they wait (at their meetings, and between steps): each its own side's,
+    /// side 0 the calling thread's. Nothing on one thread.
+    pub fn set_chores(&mut self, chores: Option<SharedChores>) {
+        self.chores = chores;
+    }
+
     /// Builds the workspace (pattern and symbolic factorisation once).
     pub fn new(line: &LineModel) -> Result<Self, SolveError> {
         let n = line.nodes();
@@ -109,6 +120,7 @@ impl DynWorkspace {
         Ok(Self {
             scope: Scope::whole(line, free_runs.len()),
             lane: None,
+            chores: None,
             split,
             reference: crate::statics::residual_reference(line),
             free_runs,

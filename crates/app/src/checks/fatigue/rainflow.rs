@@ -45,6 +45,10 @@ impl Rainflow {
         Self::default()
     }
 
+    /// `p` is a turning point: onto the stack, and the cycles it closes counted. Out of line and
+    /// cold: most samples continue the current direction ([`Rainflow::push`]'s inlined path).
+    #[cold]
+    #[inline(never)]
     fn reversal(&mut self, p: f64, sink: &mut impl FnMut(Cycle)) {
         self.stack.push(p);
         while self.stack.len() >= 3 {
@@ -70,6 +74,9 @@ impl Rainflow {
     }
 
     /// Takes one sample; counts the cycles it closes. Non-finite samples must not be pushed.
+    /// Inlined into the caller's loop: a sample that continues the direction (most of a
+    /// riser's, a step at a time) is a comparison and a store.
+    #[inline(always)]
     pub fn push(&mut self, x: f64, sink: &mut impl FnMut(Cycle)) {
         let Some(prev) = self.last else {
             self.last = Some(x);

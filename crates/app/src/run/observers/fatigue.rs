@@ -13,8 +13,19 @@
 //! in the same order, so the damage is the same to the bit as counted on the stepping thread (tested).
 //! `finish` and `save` (a checkpoint) wait for the thread to count every step handed to it and
 //! take the counters back; the next counted step starts a new thread.
+//!
+//! **In the pair's waits.** Where two threads may step the line ([`catena_fe::dynamics::Pair`]),
+//! a third busy thread would stall them, and counting on the stepping thread between steps keeps
+//! the partner idle (issue 69: 8.3 % of the 3-hour storm). So the counting is split at the line's
+//! middle node into two halves ([`Lent`]), each with its nodes' counters and damage, and left as
+//! the pair's chores ([`catena_fe::partner::Chores`]): each counted step's tension, moment and
+//! height are copied into each half, and while the pair steps the next step, the calling thread
+//! counts the first half and the partner the second, [`CHORE_NODES`] nodes at a time, in what
+//! would have been their waits for each other. Handed the next step, the observer first counts
+//! whatever of the last is left (all of it where one thread stepped). Every counter takes the
+//! same samples in the same order: the damage is the same to the bit (tested).
 
-use std::sync::{mpsc, Mutex};
+use std::sync::{mpsc, Arc, Mutex};
 use std::thread::JoinHandle;
 
 use serde::{Deserialize, Serialize};
@@ -26,6 +37,9 @@ use crate::checks::fatigue::stress::Fibre;
 use crate::checks::fatigue::FatigueSpec;
 use crate::error::AppError;
 use crate::run::observe::{Control, Observer, RunContext, StepView, Stop};
+
+mod lent;
+pub use lent::{Lent, CHORE_NODES};
 
 /// Counted steps handed to the counting thread at a time, at most.
 pub const BATCH_STEPS: usize = 64;
@@ -50,6 +64,8 @@ pub struct Fatigue {
     thread: Option<CountingThread>,
     /// Whether counting runs on a thread of its own (more than one core).
     threaded: bool,
+    /// The two halves of the counting left as the pair's chores, when two threads may step.
+    lent: Option<Arc<Lent>>,
     /// The batch being filled: per counted step, the tension, moment and height at every node.
     batch: Vec<f64>,
     /// Numbers in a full batch: `3·n` per step, [`BATCH_STEPS`] steps or fewer.
@@ -93,20 +109,32 @@ struct Saved {
 impl Counting {
     /// Counts one step's stresses at every node from its effective tension, moment and height.
     fn count(&mut self, tension: &[f64], moment: &[f64], z: &[f64]) {
+        self.count_from(0, tension, moment, z);
+    }
+
+    /// Counts one step's stresses at the nodes from `first` on, as many as `tension` holds.
+    fn count_from(&mut self, first: usize, tension: &[f64], moment: &[f64], z: &[f64]) {
         // Compiled for one section (its section, curve and factor constants of the loop, whose
         // areas the compiler takes out of it) and for a line of sections (each node's own).
         if self.spec.nodes.is_empty() {
-            self.count_nodes::<false>(tension, moment, z);
+            self.count_nodes::<false>(first, tension, moment, z);
         } else {
-            self.count_nodes::<true>(tension, moment, z);
+            self.count_nodes::<true>(first, tension, moment, z);
         }
     }
 
-    /// [`Counting::count`] (`PER_NODE`: each node's section, curve and factor).
+    /// [`Counting::count_from`] (`PER_NODE`: each node's section, curve and factor).
     #[inline(always)]
-    fn count_nodes<const PER_NODE: bool>(&mut self, tension: &[f64], moment: &[f64], z: &[f64]) {
+    fn count_nodes<const PER_NODE: bool>(
+        &mut self,
+        first: usize,
+        tension: &[f64],
+        moment: &[f64],
+        z: &[f64],
+    ) {
         let nf = self.spec.fibres.len();
         for (i, ((&te, &m), &z)) in tension.iter().zip(moment).zip(z).enumerate() {
+            let i = first + i;
             let (sec, curve, factor) = if PER_NODE {
                 (
                     &self.spec.nodes[i].0,
@@ -127,6 +155,37 @@ impl Counting {
                 }
             }
         }
+    }
+
+    /// The counting of the nodes `..m` and that of the nodes `m..` (each with its counters, damage,
+    /// curves and factors): [`Counting::join`] puts them back.
+    fn split_at(mut self, m: usize) -> (Self, Self) {
+        let per = 2 * self.spec.fibres.len();
+        let mut spec = self.spec.clone();
+        spec.nodes = if self.spec.nodes.is_empty() {
+            Vec::new()
+        } else {
+            self.spec.nodes.split_off(m)
+        };
+        let second = Self {
+            spec,
+            factor: self.factor,
+            node_factor: self.node_factor.split_off(m),
+            node_curve: self.node_curve.split_off(m),
+            counters: self.counters.split_off(m * per),
+            damage: self.damage.split_off(m * per),
+        };
+        (self, second)
+    }
+
+    /// The counting of [`Counting::split_at`]'s two parts, whole again.
+    fn join(mut self, mut second: Self) -> Self {
+        self.spec.nodes.append(&mut second.spec.nodes);
+        self.node_factor.append(&mut second.node_factor);
+        self.node_curve.append(&mut second.node_curve);
+        self.counters.append(&mut second.counters);
+        self.damage.append(&mut second.damage);
+        self
     }
 
     /// Counts each step of a batch (`3·n` numbers a step: tension, moment, height).
@@ -189,10 +248,26 @@ impl Fatigue {
         self.threaded
     }
 
+    /// Whether the counting is lent to the waits of the pair that may step the line (see the
+    /// module docs).
+    pub fn in_the_pairs_waits(&self) -> bool {
+        self.lent.is_some()
+    }
+
     /// The observer for `n` nodes (each with the specification's section and curve, or, for a line
     /// of sections, its own: [`FatigueSpec::nodes`]), counting on a thread of its own (`threaded`:
     /// the run's [`crate::run::RunOptions::threads`] above one) or on the stepping thread.
     pub fn with_thread(spec: FatigueSpec, n: usize, threaded: bool) -> Self {
+        Self::with_mode(spec, n, threaded, false)
+    }
+
+    /// The observer for `n` nodes counting in the waits of the two threads that may step the
+    /// line (see the module docs): its [`Observer::chores`].
+    pub fn lent(spec: FatigueSpec, n: usize) -> Self {
+        Self::with_mode(spec, n, false, true)
+    }
+
+    fn with_mode(spec: FatigueSpec, n: usize, threaded: bool, lent: bool) -> Self {
         let factor = range_factor(&spec);
         let m = n * spec.fibres.len() * 2;
         let node = |i: usize| {
@@ -222,6 +297,7 @@ impl Fatigue {
             counting: Some(counting),
             thread: None,
             threaded,
+            lent: lent.then(|| Arc::new(Lent::new(n / 2))),
             batch: Vec::new(),
             batch_len: 3 * n * (BATCH_VALUES / (3 * n).max(1)).clamp(1, BATCH_STEPS),
             n,
@@ -237,6 +313,10 @@ impl Fatigue {
         let r = s.results;
         let n = self.n;
         let (tension, moment, z) = (&r.tension[..n], &r.moment[..n], &r.z[..n]);
+        if let Some(lent) = &self.lent {
+            lent.hand(self.counting.take(), (tension, moment, z));
+            return Ok(());
+        }
         if !self.threaded {
             if let Some(c) = &mut self.counting {
                 c.count(tension, moment, z);
@@ -282,6 +362,9 @@ impl Fatigue {
     /// Hands over what is left of the batch and waits for the counting thread to count it all,
     /// taking the counting back.
     fn drain(&mut self) -> Result<(), AppError> {
+        if let Some(c) = self.lent.as_ref().and_then(|l| l.take_back()) {
+            self.counting = Some(c);
+        }
         if self.thread.is_some() {
             self.hand_over()?;
         } else if !self.batch.is_empty() {
@@ -357,6 +440,10 @@ fn failure(message: String) -> AppError {
 impl Observer for Fatigue {
     fn name(&self) -> &'static str {
         "fatigue"
+    }
+    fn chores(&self) -> Option<catena_fe::partner::SharedChores> {
+        let lent = Arc::clone(self.lent.as_ref()?);
+        Some(catena_fe::partner::SharedChores(lent))
     }
     fn step(&mut self, _: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         self.take(s)?;
@@ -473,21 +560,16 @@ mod tests {
         assert!((got / want - 1.0).abs() < 1e-9, "{got} against {want}");
     }
 
-    /// The counting thread counts what the stepping thread would, to the bit: two fibres at five
-    /// nodes of a line of two sections (each node's own curve and factor), 1000 steps of a
-    /// pseudo-random tension, moment and height (15 batches and a part), counted on the stepping
-    /// thread and on a thread, this one saved (the thread drained and restarted) at step 300 and
-    /// restored into a third observer that counts the rest. Every counter and damage equal.
-    #[test]
-    fn the_counting_thread_counts_to_the_same_bits() {
+    /// A line of `n` nodes of two sections (each node's own curve and factor: curve E at the
+    /// nodes `thin` says, D on a thicker wall elsewhere), two fibres, counted from 3 s.
+    fn two_sections(n: usize, thin: impl Fn(usize) -> bool) -> FatigueSpec {
         let thick = PipeSection {
             wall: 0.04,
             ..section()
         };
         let e = SnCurve::dnv("dnv-e-seawater-cp").expect("curve");
         let d = SnCurve::dnv("dnv-d-free-corrosion").expect("curve");
-        let n = 5;
-        let spec = FatigueSpec {
+        FatigueSpec {
             curve: e,
             curve_name: "dnv-e-seawater-cp".into(),
             scf: 1.2,
@@ -497,37 +579,58 @@ mod tests {
             section: section(),
             nodes: (0..n)
                 .map(|i| {
-                    if i < 2 {
+                    if thin(i) {
                         (section(), e, 1.2)
                     } else {
                         (thick, d, 1.1)
                     }
                 })
                 .collect(),
-        };
-        let mut here = Fatigue::with_thread(spec.clone(), n, false);
-        let mut there = Fatigue::with_thread(spec.clone(), n, true);
-        let mut restored = Fatigue::with_thread(spec, n, true);
-        let state = DynState::default();
-        let mut results = LineResults {
+        }
+    }
+
+    /// Results of `n` nodes, and a function that fills them with the next step's pseudo-random
+    /// tension, moment and height (xorshift, the same sequence each time).
+    fn random_steps(n: usize) -> (LineResults, impl FnMut(&mut LineResults)) {
+        let results = LineResults {
             tension: vec![0.0; n],
             moment: vec![0.0; n],
             z: vec![0.0; n],
             ..LineResults::default()
         };
         let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
+        let mut next = move || {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
-        for k in 0..1000u64 {
-            for i in 0..n {
-                results.tension[i] = 2e5 + 1e5 * next();
-                results.moment[i] = 1e5 * next();
-                results.z[i] = -50.0 + next();
+        let step = move |r: &mut LineResults| {
+            for i in 0..r.tension.len() {
+                r.tension[i] = 2e5 + 1e5 * next();
+                r.moment[i] = 1e5 * next();
+                r.z[i] = -50.0 + next();
             }
+        };
+        (results, step)
+    }
+
+    /// The counting thread counts what the stepping thread would, to the bit: two fibres at five
+    /// nodes of a line of two sections (each node's own curve and factor), 1000 steps of a
+    /// pseudo-random tension, moment and height (15 batches and a part), counted on the stepping
+    /// thread and on a thread, this one saved (the thread drained and restarted) at step 300 and
+    /// restored into a third observer that counts the rest. Every counter and damage equal.
+    #[test]
+    fn the_counting_thread_counts_to_the_same_bits() {
+        let n = 5;
+        let spec = two_sections(n, |i| i < 2);
+        let mut here = Fatigue::with_thread(spec.clone(), n, false);
+        let mut there = Fatigue::with_thread(spec.clone(), n, true);
+        let mut restored = Fatigue::with_thread(spec, n, true);
+        let state = DynState::default();
+        let (mut results, mut step) = random_steps(n);
+        for k in 0..1000u64 {
+            step(&mut results);
             let v = view(k, &state, &results);
             here.take(&v).expect("counted");
             there.take(&v).expect("counted");
@@ -557,5 +660,88 @@ mod tests {
         assert_eq!(bits(a), bits(c), "saved, restored and counted on");
         assert_eq!(a, b);
         assert_eq!(here.span, there.span);
+    }
+
+    /// The counting lent as a pair's chores ([`Lent`]) counts to the same bits as on the stepping
+    /// thread, whoever counts each piece: two threads doing the chores of the two halves while the
+    /// steps are handed over (their pieces racing the observer's), none at all (the observer counts
+    /// each step when handed the next), and saved halfway and restored. 37 nodes of two sections:
+    /// halves of 18 and 19 nodes, each two pieces of [`CHORE_NODES`] or fewer.
+    #[test]
+    fn the_pairs_chores_count_to_the_same_bits() {
+        use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+        let n = 37;
+        let spec = two_sections(n, |i| i % 3 == 0);
+        let mut here = Fatigue::with_thread(spec.clone(), n, false);
+        let mut chored = Fatigue::lent(spec.clone(), n);
+        let mut alone = Fatigue::lent(spec.clone(), n);
+        let mut restored = Fatigue::lent(spec, n);
+        assert!(
+            here.chores().is_none(),
+            "only a lent counting leaves chores"
+        );
+        let chores = chored.chores().expect("chores");
+        let (stop, pieces) = (AtomicBool::new(false), AtomicUsize::new(0));
+        let state = DynState::default();
+        let (mut results, mut step) = random_steps(n);
+        std::thread::scope(|sc| {
+            for side in 0..2 {
+                let (c, stop, pieces) = (&chores, &stop, &pieces);
+                sc.spawn(move || {
+                    while !stop.load(Ordering::Relaxed) {
+                        if c.0.chore(side) {
+                            pieces.fetch_add(1, Ordering::Relaxed);
+                        }
+                        std::hint::spin_loop();
+                    }
+                });
+            }
+            for k in 0..1000u64 {
+                step(&mut results);
+                let v = view(k, &state, &results);
+                here.take(&v).expect("counted");
+                chored.take(&v).expect("counted");
+                alone.take(&v).expect("counted");
+                if k == 300 {
+                    let saved = alone.save().expect("saved");
+                    restored.restore(&saved).expect("restored");
+                } else if k > 300 {
+                    restored.take(&v).expect("counted");
+                }
+                if k % 7 == 0 {
+                    // Some steps wait for the chores (others are handed over mid-way).
+                    std::thread::sleep(std::time::Duration::from_micros(50));
+                }
+            }
+            stop.store(true, Ordering::Relaxed);
+        });
+        assert!(
+            pieces.load(Ordering::Relaxed) > 100,
+            "the chores were not done"
+        );
+        for f in [&mut here, &mut chored, &mut alone, &mut restored] {
+            f.drain().expect("drained");
+            f.counting.as_mut().expect("counting").finish();
+        }
+        let bits = |f: &Fatigue| -> Vec<u64> {
+            let c = f.counting.as_ref().expect("counting");
+            c.damage.iter().map(|x| x.to_bits()).collect()
+        };
+        assert!(here
+            .counting
+            .as_ref()
+            .expect("c")
+            .damage
+            .iter()
+            .all(|x| *x > 0.0));
+        assert_eq!(bits(&here), bits(&chored), "counted in the chores");
+        assert_eq!(bits(&here), bits(&alone), "lent, no chores done");
+        assert_eq!(
+            bits(&here),
+            bits(&restored),
+            "lent, saved, restored and counted on"
+        );
+        assert_eq!(here.counting, chored.counting);
+        assert_eq!(here.span, chored.span);
     }
 }
