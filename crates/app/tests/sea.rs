@@ -233,8 +233,8 @@ fn sampled_kinematics_are_the_exact_ones_within_1e_4() {
 /// A run's threads (`RunOptions::threads`) say where the line is stepped and the fatigue damage
 /// counted, and change nothing else: 30 s of storm 23 run on one thread (counting on the stepping
 /// thread), on two (the line stepped by a pair, counting in the pair's waits, each thread half the
-/// nodes) and on three (a pair, counting on a thread of its own), the damage, the counters' state
-/// and the envelopes the same to the bit. (A study at `--jobs` equal to the cores gives each storm one thread:
+/// nodes) and on three (a pair, counting on a thread of its own; the envelopes taken in the pair's
+/// waits on both), the damage, the counters' state and the envelopes the same to the bit. (A study at `--jobs` equal to the cores gives each storm one thread:
 /// `schedule::threads_per_run`.)
 #[test]
 fn fatigue_counts_the_same_on_one_thread_or_more() {

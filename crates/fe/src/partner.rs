@@ -75,6 +75,15 @@ impl SharedChores {
     }
 }
 
+/// Several chores, done in turn: a piece of the first with any left.
+pub struct ChoreList(pub Vec<Arc<dyn Chores>>);
+
+impl Chores for ChoreList {
+    fn chore(&self, side: usize) -> bool {
+        self.0.iter().any(|c| c.chore(side))
+    }
+}
+
 impl std::fmt::Debug for SharedChores {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str("SharedChores")

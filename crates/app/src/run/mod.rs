@@ -17,6 +17,7 @@ pub mod as_laid;
 pub mod checkpoint;
 pub mod cores;
 pub mod lay;
+pub mod lend;
 pub mod observe;
 pub mod observers;
 pub mod outputs;
@@ -290,9 +291,14 @@ pub fn run(
         threads: threads - usize::from(on_two),
         paired: on_two,
     });
-    // The first chores an observer leaves: the pair's two threads do them while they wait.
-    let chores = outputs.iter_mut().find_map(|o| o.chores());
-    ws.set_chores(chores);
+    // The chores the observers leave: the pair's two threads do them while they wait.
+    let mut chores: Vec<_> = outputs.iter_mut().filter_map(|o| o.chores()).collect();
+    ws.set_chores(match chores.len() {
+        0 | 1 => chores.pop(),
+        _ => Some(catena_fe::partner::SharedChores(Arc::new(
+            catena_fe::partner::ChoreList(chores.into_iter().map(|c| c.0).collect()),
+        ))),
+    });
     if let Some(cp) = &opts.restart {
         restore_observers(cp, &opts.restart_file, &mut outputs, extra)?;
     }

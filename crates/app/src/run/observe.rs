@@ -19,6 +19,7 @@ use serde_json::Value;
 
 use crate::error::AppError;
 use crate::run::checkpoint::Checkpoint;
+use crate::run::lend::Halves;
 use crate::run::statics::StaticRun;
 use crate::scene::riser::{DynamicSpec, Gauge};
 
@@ -169,10 +170,11 @@ pub trait Observer {
     }
 
     /// Work this observer leaves for the line's two stepping threads to do while they wait for
-    /// each other, if any ([`catena_fe::partner::Chores`]: the fatigue counting of the step
-    /// before, when a pair may step the line). The run hands the first observer's to the
-    /// Workspace ([`catena_fe::dynamics::DynWorkspace::set_chores`]); an observer that leaves
-    /// chores must also do whatever of them is left when it is handed the next step.
+    /// each other, if any ([`catena_fe::partner::Chores`]: the fatigue counting and the envelopes
+    /// of the step before, when a pair may step the line; [`crate::run::lend`]). The run hands
+    /// every observer's to the Workspace, done in turn
+    /// ([`catena_fe::dynamics::DynWorkspace::set_chores`]); an observer that leaves chores must
+    /// also do whatever of them is left when it is handed the next step.
     fn chores(&self) -> Option<catena_fe::partner::SharedChores> {
         None
     }
@@ -340,13 +342,18 @@ pub struct Envelopes {
     /// `1/EI` per node (the mean of the adjacent elements' EI).
     inv_ei: Vec<f64>,
     /// Scratch for the curvature, one value per node (allocated once).
-    scratch: Vec<f64>,
+    scratch: Scratch<Vec<f64>>,
     /// Scratch for wall tension and the two fibre stresses (empty without a section).
-    section_scratch: [Vec<f64>; 3],
+    section_scratch: Scratch<[Vec<f64>; 3]>,
     section: Option<crate::checks::fatigue::stress::PipeSection>,
     /// A line of sections: each node's (empty: `section` at every node).
     node_sections: Vec<crate::checks::fatigue::stress::PipeSection>,
+    /// The halves lent to the waits of the pair that steps the line ([`Envelopes::lend_to_pair`]).
+    lending: Lending,
 }
+
+mod lent;
+use lent::{Lending, Scratch};
 
 #[derive(Serialize, Deserialize)]
 struct EnvelopesSaved {
@@ -392,12 +399,46 @@ impl Envelopes {
             samples: 0,
             touchdown: (f64::INFINITY, f64::NEG_INFINITY),
             inv_ei,
-            scratch: vec![0.0; n],
-            section_scratch: std::array::from_fn(|_| {
+            scratch: Scratch(vec![0.0; n]),
+            section_scratch: Scratch(std::array::from_fn(|_| {
                 vec![0.0; if section.is_some() { n } else { 0 }]
-            }),
+            })),
             section,
             node_sections,
+            lending: Lending::default(),
+        }
+    }
+
+    /// Makes the envelopes take each step in the waits of the pair that may step the line, each
+    /// thread half the nodes ([`crate::run::lend`]): [`Observer::chores`].
+    pub fn lend_to_pair(mut self) -> Self {
+        let n = self.inv_ei.len();
+        self.lending = Lending(Some(Arc::new(Halves::new(n / 2))));
+        self
+    }
+
+    /// Takes a step into the range graphs: at once, or handed to the halves lent to the pair's
+    /// waits.
+    fn take_step(&mut self, r: &LineResults) {
+        let Some(l) = self.lending.0.clone() else {
+            self.update(r);
+            return;
+        };
+        if !l.lent() {
+            let halves = self.split(l.at());
+            l.lend(halves);
+        }
+        let step = [&r.moment, &r.tension, &r.penetration, &r.seabed_force, &r.z];
+        // The height only for the wall stresses.
+        let k = if self.wall.is_some() { 5 } else { 4 };
+        l.hand(&step.map(|v| v.as_slice())[..k]);
+        self.samples += 1;
+    }
+
+    /// Takes the halves back from the pair's waits, each step's rest taken first.
+    fn drain(&mut self) {
+        if let Some(h) = self.lending.0.as_ref().and_then(|l| l.take_back()) {
+            self.join(h);
         }
     }
 
@@ -438,13 +479,13 @@ impl Envelopes {
         self.tension.take(&s.tension);
         self.penetration.take(&s.penetration);
         self.seabed_force.take(&s.seabed_force);
-        let k = &mut self.scratch;
+        let k = &mut self.scratch.0;
         for ((k, m), c) in k.iter_mut().zip(&s.moment).zip(&self.inv_ei) {
             *k = m * c;
         }
         self.curvature.take(k);
         if let (Some(sec), Some([wt, top, bottom])) = (&self.section, &mut self.wall) {
-            let [w, t, b] = &mut self.section_scratch;
+            let [w, t, b] = &mut self.section_scratch.0;
             // One section (a constant of the loop) or each node's own.
             if self.node_sections.is_empty() {
                 wall_stresses_one(s, sec, [w, t, b]);
@@ -510,7 +551,7 @@ impl Observer for Envelopes {
     }
     fn step(&mut self, ctx: &RunContext<'_>, s: &StepView<'_>) -> Result<Control, AppError> {
         if s.envelope {
-            self.update(s.results);
+            self.take_step(s.results);
             if let Some(a) =
                 catena_fe::statics::touchdown_arc(&ctx.model.line.arc, &s.results.penetration)
             {
@@ -519,7 +560,16 @@ impl Observer for Envelopes {
         }
         Ok(Control::Continue)
     }
+    fn finish(&mut self, _: &RunContext<'_>, _: Option<&Stop>) -> Result<(), AppError> {
+        self.drain();
+        Ok(())
+    }
+    fn chores(&self) -> Option<catena_fe::partner::SharedChores> {
+        let l = Arc::clone(self.lending.0.as_ref()?);
+        Some(catena_fe::partner::SharedChores(l))
+    }
     fn save(&mut self) -> Result<Value, AppError> {
+        self.drain();
         Ok(serde_json::to_value(EnvelopesSaved {
             touchdown: self.touchdown.0.is_finite().then_some(self.touchdown),
             ranges: self.ranges().iter().map(|(_, r)| r.save()).collect(),
@@ -528,6 +578,7 @@ impl Observer for Envelopes {
         .unwrap_or(Value::Null))
     }
     fn restore(&mut self, v: &Value) -> Result<(), String> {
+        self.drain();
         let s: EnvelopesSaved = decode(v, "envelopes")?;
         let names: Vec<&str> = self.ranges().iter().map(|(n, _)| *n).collect();
         if s.ranges.len() != names.len() {

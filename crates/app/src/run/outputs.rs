@@ -67,11 +67,9 @@ pub const BUILTINS: &[Registration] = &[
         name: "envelopes",
         build: |s| {
             let ei: Vec<f64> = s.model.line.elements.iter().map(|e| e.section.ei).collect();
-            Some(Box::new(Envelopes::with_sections(
-                &ei,
-                s.spec.section,
-                s.spec.node_sections.clone(),
-            )))
+            let e = Envelopes::with_sections(&ei, s.spec.section, s.spec.node_sections.clone());
+            // Beside a pair, taken in its waits.
+            Some(Box::new(if s.paired { e.lend_to_pair() } else { e }))
         },
     },
     Registration {

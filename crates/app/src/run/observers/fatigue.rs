@@ -17,11 +17,11 @@
 //! **In the pair's waits.** Where two threads may step the line ([`catena_fe::dynamics::Pair`]),
 //! a third busy thread would stall them, and counting on the stepping thread between steps keeps
 //! the partner idle (issue 69: 8.3 % of the 3-hour storm). So the counting is split at the line's
-//! middle node into two halves ([`Lent`]), each with its nodes' counters and damage, and left as
-//! the pair's chores ([`catena_fe::partner::Chores`]): each counted step's tension, moment and
-//! height are copied into each half, and while the pair steps the next step, the calling thread
-//! counts the first half and the partner the second, [`CHORE_NODES`] nodes at a time, in what
-//! would have been their waits for each other. Handed the next step, the observer first counts
+//! middle node into two halves, each with its nodes' counters and damage, and lent to the pair's
+//! waits ([`crate::run::lend`]): each counted step's tension, moment and height are copied into
+//! each half, and while the pair steps the next step, the calling thread counts the first half and
+//! the partner the second, [`crate::run::lend::CHORE_NODES`] nodes at a time, in what would have
+//! been their waits for each other. Handed the next step, the observer first counts
 //! whatever of the last is left (all of it where one thread stepped). Every counter takes the
 //! same samples in the same order: the damage is the same to the bit (tested).
 
@@ -36,10 +36,8 @@ use crate::checks::fatigue::sn::SnCurve;
 use crate::checks::fatigue::stress::Fibre;
 use crate::checks::fatigue::FatigueSpec;
 use crate::error::AppError;
+use crate::run::lend::{Halves, Piece};
 use crate::run::observe::{Control, Observer, RunContext, StepView, Stop};
-
-mod lent;
-pub use lent::{Lent, CHORE_NODES};
 
 /// Counted steps handed to the counting thread at a time, at most.
 pub const BATCH_STEPS: usize = 64;
@@ -64,8 +62,8 @@ pub struct Fatigue {
     thread: Option<CountingThread>,
     /// Whether counting runs on a thread of its own (more than one core).
     threaded: bool,
-    /// The two halves of the counting left as the pair's chores, when two threads may step.
-    lent: Option<Arc<Lent>>,
+    /// The two halves of the counting lent to the pair's waits, when two threads may step.
+    lent: Option<Arc<Halves<Counting>>>,
     /// The batch being filled: per counted step, the tension, moment and height at every node.
     batch: Vec<f64>,
     /// Numbers in a full batch: `3·n` per step, [`BATCH_STEPS`] steps or fewer.
@@ -217,6 +215,19 @@ impl Counting {
     }
 }
 
+/// A half of the counting, lent to a pair's waits: its nodes' counters and damage.
+impl Piece for Counting {
+    fn nodes(&self) -> usize {
+        self.node_curve.len()
+    }
+    /// `step`: the tension, moment and height at the half's nodes.
+    fn take(&mut self, step: &[&[f64]], nodes: std::ops::Range<usize>) {
+        let (t, m, z) = (step[0], step[1], step[2]);
+        let r = nodes.clone();
+        self.count_from(nodes.start, &t[r.clone()], &m[r.clone()], &z[r]);
+    }
+}
+
 impl CountingThread {
     /// Starts a thread counting the batches it is handed with `counting`, for `n` nodes.
     fn start(mut counting: Counting, n: usize) -> Result<Self, AppError> {
@@ -297,7 +308,7 @@ impl Fatigue {
             counting: Some(counting),
             thread: None,
             threaded,
-            lent: lent.then(|| Arc::new(Lent::new(n / 2))),
+            lent: lent.then(|| Arc::new(Halves::new(n / 2))),
             batch: Vec::new(),
             batch_len: 3 * n * (BATCH_VALUES / (3 * n).max(1)).clamp(1, BATCH_STEPS),
             n,
@@ -314,7 +325,11 @@ impl Fatigue {
         let n = self.n;
         let (tension, moment, z) = (&r.tension[..n], &r.moment[..n], &r.z[..n]);
         if let Some(lent) = &self.lent {
-            lent.hand(self.counting.take(), (tension, moment, z));
+            if let Some(c) = self.counting.take() {
+                let (a, b) = c.split_at(lent.at());
+                lent.lend([a, b]);
+            }
+            lent.hand(&[tension, moment, z]);
             return Ok(());
         }
         if !self.threaded {
@@ -362,8 +377,8 @@ impl Fatigue {
     /// Hands over what is left of the batch and waits for the counting thread to count it all,
     /// taking the counting back.
     fn drain(&mut self) -> Result<(), AppError> {
-        if let Some(c) = self.lent.as_ref().and_then(|l| l.take_back()) {
-            self.counting = Some(c);
+        if let Some([a, b]) = self.lent.as_ref().and_then(|l| l.take_back()) {
+            self.counting = Some(a.join(b));
         }
         if self.thread.is_some() {
             self.hand_over()?;
@@ -662,14 +677,13 @@ mod tests {
         assert_eq!(here.span, there.span);
     }
 
-    /// The counting lent as a pair's chores ([`Lent`]) counts to the same bits as on the stepping
+    /// The counting lent to a pair's waits ([`crate::run::lend`]) counts to the same bits as on the stepping
     /// thread, whoever counts each piece: two threads doing the chores of the two halves while the
     /// steps are handed over (their pieces racing the observer's), none at all (the observer counts
     /// each step when handed the next), and saved halfway and restored. 37 nodes of two sections:
-    /// halves of 18 and 19 nodes, each two pieces of [`CHORE_NODES`] or fewer.
+    /// halves of 18 and 19 nodes, each two pieces of [`crate::run::lend::CHORE_NODES`] or fewer.
     #[test]
     fn the_pairs_chores_count_to_the_same_bits() {
-        use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
         let n = 37;
         let spec = two_sections(n, |i| i % 3 == 0);
         let mut here = Fatigue::with_thread(spec.clone(), n, false);
@@ -681,21 +695,9 @@ mod tests {
             "only a lent counting leaves chores"
         );
         let chores = chored.chores().expect("chores");
-        let (stop, pieces) = (AtomicBool::new(false), AtomicUsize::new(0));
         let state = DynState::default();
         let (mut results, mut step) = random_steps(n);
-        std::thread::scope(|sc| {
-            for side in 0..2 {
-                let (c, stop, pieces) = (&chores, &stop, &pieces);
-                sc.spawn(move || {
-                    while !stop.load(Ordering::Relaxed) {
-                        if c.0.chore(side) {
-                            pieces.fetch_add(1, Ordering::Relaxed);
-                        }
-                        std::hint::spin_loop();
-                    }
-                });
-            }
+        let pieces = crate::run::lend::racing_chores(&chores, || {
             for k in 0..1000u64 {
                 step(&mut results);
                 let v = view(k, &state, &results);
@@ -713,12 +715,8 @@ mod tests {
                     std::thread::sleep(std::time::Duration::from_micros(50));
                 }
             }
-            stop.store(true, Ordering::Relaxed);
         });
-        assert!(
-            pieces.load(Ordering::Relaxed) > 100,
-            "the chores were not done"
-        );
+        assert!(pieces > 100, "the chores were not done");
         for f in [&mut here, &mut chored, &mut alone, &mut restored] {
             f.drain().expect("drained");
             f.counting.as_mut().expect("counting").finish();
