@@ -92,18 +92,18 @@ impl Envelopes {
             second.push(r.split_off(at));
             first.push(std::mem::replace(r, Range::new(0)));
         }
-        let inv_ei = std::mem::take(&mut self.inv_ei);
-        let (a, b) = inv_ei.split_at(at);
+        let mut inv_ei = std::mem::take(&mut self.inv_ei);
+        let second_inv_ei = inv_ei.split_off(at);
         [
             Half {
                 ranges: first,
-                inv_ei: a.to_vec(),
+                inv_ei,
                 section,
                 node_sections: std::mem::take(&mut self.node_sections),
             },
             Half {
                 ranges: second,
-                inv_ei: b.to_vec(),
+                inv_ei: second_inv_ei,
                 section,
                 node_sections: second_sections,
             },
@@ -137,6 +137,8 @@ impl Piece for Half {
         r[3].take_at(nodes.clone(), at(2));
         r[4].take_at(nodes.clone(), at(3));
         let outer = Fibre::Outer;
+        // The height only with the section (then handed).
+        let z = step.get(4).map_or(&[][..], |z| &z[nodes.clone()]);
         for start in nodes.clone().step_by(BLOCK) {
             let block = start..(start + BLOCK).min(nodes.end);
             let len = block.len();
@@ -150,7 +152,6 @@ impl Piece for Half {
                 continue;
             };
             let (mut w, mut top, mut bottom) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
-            let z = &step[4][nodes.clone()];
             for (j, i) in block.clone().enumerate() {
                 let sec = self.node_sections.get(i).unwrap_or(sec);
                 let (te, zi) = (t[local(i)], z[local(i)]);
