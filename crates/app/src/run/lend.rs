@@ -170,3 +170,15 @@ pub(crate) fn racing_chores(chores: &catena_fe::partner::SharedChores, f: impl F
     });
     pieces.load(Ordering::Relaxed)
 }
+
+/// A pseudo-random sequence in [−½, ½) from `seed` (xorshift: the same sequence each time), for
+/// the lent observers' tests.
+#[cfg(test)]
+pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}

@@ -214,13 +214,7 @@ mod tests {
             z: vec![0.0; n],
             ..LineResults::default()
         };
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = crate::run::lend::xorshift(0x9e37_79b9_7f4a_7c15u64);
         let pieces = crate::run::lend::racing_chores(&chores, || {
             for k in 0..1000 {
                 for i in 0..n {

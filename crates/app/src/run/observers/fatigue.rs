@@ -613,13 +613,7 @@ mod tests {
             z: vec![0.0; n],
             ..LineResults::default()
         };
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = crate::run::lend::xorshift(0x2545_f491_4f6c_dd1du64);
         let step = move |r: &mut LineResults| {
             for i in 0..r.tension.len() {
                 r.tension[i] = 2e5 + 1e5 * next();
