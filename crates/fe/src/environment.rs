@@ -111,6 +111,15 @@ impl Hydro {
         c.ca_normal * self.water_density * std::f64::consts::PI * d * d / 4.0 * l
     }
 
+    /// The drag's factors per diameter and length with the coefficients `c`: `(½ρ·Cd_n, ½ρ·Cd_a·π)`
+    /// (normal, on the projected area `D`; axial, on the surface `πD`), N·s²/m⁴.
+    #[inline]
+    pub fn drag_factors(&self, c: &Coefficients) -> (f64, f64) {
+        let kn0 = 0.5 * self.water_density * c.cd_normal;
+        let ka0 = 0.5 * self.water_density * c.cd_axial * std::f64::consts::PI;
+        (kn0, ka0)
+    }
+
     /// The Morison drag with the coefficients `c` on a node of diameter `d` and tributary length
     /// `l`, at height `z`, with the tangent `(tx, tz)`, the velocity `(vx, vz)` and the wave
     /// particle velocity `wave` (if any); with `with_c`, also the damping block.
@@ -127,8 +136,7 @@ impl Hydro {
         wave: Option<[f64; 2]>,
         with_c: bool,
     ) -> NodeDrag {
-        let kn0 = 0.5 * self.water_density * c.cd_normal;
-        let ka0 = 0.5 * self.water_density * c.cd_axial * std::f64::consts::PI;
+        let (kn0, ka0) = self.drag_factors(c);
         let (rx, rz) = match wave {
             None => (self.current_at(z) - vx, -vz),
             Some([wx, wz]) => (self.current_at(z) + wx - vx, wz - vz),

@@ -45,7 +45,7 @@
 //! is `Some` (an effect absent from the scene is not built and costs nothing), with its
 //! finite-difference tangent test and a mutation in `scripts/mutations.toml`.
 
-use catena_seabed::law::{SeabedHistory, TrialMemo};
+use catena_seabed::law::{Law, SeabedHistory, TrialMemo};
 
 use std::ops::Range;
 
@@ -53,6 +53,11 @@ use crate::assembly::{Assembler, Part, Placement};
 use crate::environment::Hydro;
 use crate::model::{Attachment, AxialFriction, LineModel};
 use crate::waves::Kinematics;
+
+mod linear_contact;
+mod morison;
+pub use linear_contact::ContactScratch;
+pub use morison::MorisonScratch;
 
 /// What the loads need of the Model: the line, its placement and the optional effects.
 #[derive(Debug, Clone, Copy)]
@@ -120,6 +125,10 @@ pub struct LoadScratch {
     pub node_tangent: [Vec<f64>; 2],
     /// Seabed force per length at the iterate, N/m.
     pub seabed_force: Vec<f64>,
+    /// The Morison passes' arrays ([`morison`]).
+    pub morison: MorisonScratch,
+    /// The linear seabed's contact passes' arrays ([`linear_contact`]).
+    pub contact: ContactScratch,
 }
 
 impl LoadScratch {
@@ -128,6 +137,8 @@ impl LoadScratch {
         Self {
             node_tangent: [vec![1.0; n], vec![0.0; n]],
             seabed_force: vec![0.0; n],
+            morison: MorisonScratch::new(n),
+            contact: ContactScratch::new(n),
         }
     }
 }
@@ -226,7 +237,7 @@ pub fn assemble_part(
             seabed,
             scale,
             asm,
-            (&mut scratch.seabed_force, &nodes),
+            (&mut scratch.seabed_force, &mut scratch.contact, &nodes),
         );
         if let (Some(f), Some(anchors)) = (&sb.friction, anchors) {
             add_friction(
@@ -243,10 +254,27 @@ pub fn assemble_part(
     if let Some(h) = m.hydro {
         // Compiled for the sea's coefficients everywhere and for a line whose types have their own
         // (chosen once: the sea's are then constants of the loop).
-        let tangents = (&mut scratch.node_tangent, &nodes);
         if m.line.node_coefficients.is_empty() {
-            add_hydrodynamics::<false>(h, m, at, scale, asm, tangents);
+            let dofs = 3 * nodes.start..3 * nodes.end;
+            let [cos, sin] = &mut scratch.node_tangent;
+            node_tangents(
+                &m.placement.base[dofs.clone()],
+                &at.u[dofs],
+                [&mut cos[nodes.clone()], &mut sin[nodes.clone()]],
+            );
+            let with_c = scale.with_k && scale.c_v != 0.0;
+            morison::add_morison(
+                h,
+                (m.line, m.placement),
+                (at.u, at.v, at.wave_kin),
+                (with_c, scale.k * scale.c_v),
+                asm,
+                [cos, sin],
+                &mut scratch.morison,
+                &nodes,
+            );
         } else {
+            let tangents = (&mut scratch.node_tangent, &nodes);
             add_hydrodynamics::<true>(h, m, at, scale, asm, tangents);
         }
         if !m.line.attachments.is_empty() {
@@ -300,12 +328,42 @@ fn add_attachment_drag(
 fn add_seabed(
     m: &LoadModel<'_>,
     at: &Iterate<'_>,
-    pass: SeabedPass<'_>,
+    mut pass: SeabedPass<'_>,
     scale: TangentScale,
     asm: &mut Assembler,
-    part: (&mut [f64], &Range<usize>),
+    (seabed_force, contact, nodes): (&mut [f64], &mut ContactScratch, &Range<usize>),
 ) {
+    let part = (seabed_force, nodes);
     if m.line.mudline_profile.is_empty() {
+        // The commonest seabed in the dynamics, a run of nodes at a time ([`linear_contact`]).
+        if let (
+            Some(sb),
+            SeabedPass::Trial {
+                committed,
+                dt,
+                keep,
+                ..
+            },
+        ) = (&m.line.seabed, &mut pass)
+        {
+            if let (Law::Linear(law), None, true) = (
+                &sb.seabed.law,
+                &sb.seabed.buoyancy,
+                m.line.node_seabed.is_empty(),
+            ) {
+                let keep = keep.as_deref_mut();
+                return linear_contact::add_linear_contact(
+                    (&sb.seabed, law, *dt),
+                    (m.line, m.placement, sb.mudline_z),
+                    (at.u, at.v),
+                    scale,
+                    asm,
+                    (committed, keep),
+                    (contact, part.0),
+                    nodes,
+                );
+            }
+        }
         seabed_loops::<false>(m, at, pass, scale, asm, part);
     } else {
         seabed_loops::<true>(m, at, pass, scale, asm, part);
@@ -612,5 +670,7 @@ pub fn node_tangents(base: &[f64], u: &[f64], [cos, sin]: [&mut [f64]; 2]) {
     }
 }
 
+#[cfg(test)]
+mod contact_tests;
 #[cfg(test)]
 mod tests;

@@ -5,11 +5,11 @@ use catena_seabed::law::{Law, Seabed};
 use catena_seabed::linear::LinearSeabed;
 use catena_seabed::rq::{RandolphQuiggin, RqParams};
 
-const N: usize = 11;
+pub(super) const N: usize = 11;
 
 /// A 10 m pipe (D 0.3 m) lying across a mudline at z = 0, its nodes pressed in by 1–25 mm
 /// except two clear above it, gently bent, pinned at its left end.
-fn line(law: Law) -> (LineModel, Placement) {
+pub(super) fn line(law: Law) -> (LineModel, Placement) {
     let model = LineModel::build(&LineSpec {
         segments: vec![Segment::uniform(
             10.0,
