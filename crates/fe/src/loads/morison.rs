@@ -106,8 +106,9 @@ pub(super) fn add_morison(
         rho_pi: h.water_density * std::f64::consts::PI,
         one_ca: 1.0 + c.ca_normal,
     };
-    // 1. Gather, zipped rather than indexed (the indexed loop checked every bound). The statics
-    // have no wave kinematics (an empty list): every node then has none.
+    // 1. Gather, zipped rather than indexed (the indexed loop checked every bound). A list of
+    // wave kinematics shorter than the nodes (the statics': empty) has none for the nodes beyond
+    // it, as the node loop reads it.
     let (r, dofs) = (nodes.clone(), 3 * nodes.start..3 * nodes.end);
     let kins = wave_kin.get(r.clone());
     let pts = pl.base[dofs.clone()].chunks_exact(3);
@@ -119,7 +120,10 @@ pub(super) fn add_morison(
     let outs = outs.zip(&mut sc.waves[r]);
     for (j, ((((rx, rz), (ax, az)), waves), (b, (u, v)))) in outs.zip(pts).enumerate() {
         let z = b[1] + u[1];
-        let kin = kins.and_then(|k| k[j]);
+        let kin = match kins {
+            Some(k) => k[j],
+            None => wave_kin.get(nodes.start + j).copied().flatten(),
+        };
         let current = h.current_at(z);
         *waves = kin.is_some();
         (*rx, *rz, *ax, *az) = match kin {
