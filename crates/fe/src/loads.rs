@@ -252,16 +252,19 @@ pub fn assemble_part(
         }
     }
     if let Some(h) = m.hydro {
-        // Compiled for the sea's coefficients everywhere and for a line whose types have their own
-        // (chosen once: the sea's are then constants of the loop).
+        // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
+        // are two long dependency chains, and in one loop too few nodes fit in the processor's
+        // window to overlap them.
+        let dofs = 3 * nodes.start..3 * nodes.end;
+        let [cos, sin] = &mut scratch.node_tangent;
+        node_tangents(
+            &m.placement.base[dofs.clone()],
+            &at.u[dofs],
+            [&mut cos[nodes.clone()], &mut sin[nodes.clone()]],
+        );
+        let tangents = [&cos[..], &sin[..]];
         if m.line.node_coefficients.is_empty() {
-            let dofs = 3 * nodes.start..3 * nodes.end;
-            let [cos, sin] = &mut scratch.node_tangent;
-            node_tangents(
-                &m.placement.base[dofs.clone()],
-                &at.u[dofs],
-                [&mut cos[nodes.clone()], &mut sin[nodes.clone()]],
-            );
+            // The sea's coefficients everywhere: a run of nodes at a time.
             let with_c = scale.with_k && scale.c_v != 0.0;
             morison::add_morison(
                 h,
@@ -269,13 +272,12 @@ pub fn assemble_part(
                 (at.u, at.v, at.wave_kin),
                 (with_c, scale.k * scale.c_v),
                 asm,
-                [cos, sin],
+                tangents,
                 &mut scratch.morison,
                 &nodes,
             );
         } else {
-            let tangents = (&mut scratch.node_tangent, &nodes);
-            add_hydrodynamics::<true>(h, m, at, scale, asm, tangents);
+            add_hydrodynamics(h, m, at, scale, asm, (tangents, &nodes));
         }
         if !m.line.attachments.is_empty() {
             add_attachment_drag(h, m, at, scale, (asm, &nodes));
@@ -589,38 +591,24 @@ pub fn commit_friction(
     }
 }
 
-/// Drag and wave inertia at every node (see the module docs). The damping block enters the tangent
-/// when `c_v ≠ 0` (the dynamics). `OWN`: the nodes have their own coefficients
-/// (`LineModel::node_coefficients`), else the sea's.
+/// Drag and wave inertia at every node (see the module docs) of a line whose nodes have their own
+/// coefficients (`LineModel::node_coefficients`; with the sea's everywhere, [`morison`]), node by
+/// node, with each node's unit tangent `[cos, sin]`. The damping block enters the tangent when
+/// `c_v ≠ 0` (the dynamics).
 #[inline]
-fn add_hydrodynamics<const OWN: bool>(
+fn add_hydrodynamics(
     h: &Hydro,
     m: &LoadModel<'_>,
     at: &Iterate<'_>,
     scale: TangentScale,
     asm: &mut Assembler,
-    (node_tangent, nodes): (&mut [Vec<f64>; 2], &Range<usize>),
+    (node_tangent, nodes): ([&[f64]; 2], &Range<usize>),
 ) {
     let (model, pl) = (m.line, m.placement);
     let (u, v) = (at.u, at.v);
     let with_c = scale.with_k && scale.c_v != 0.0;
-    // Each node's tangent first, in a pass of its own: a node's sine and cosine and its drag
-    // are two long dependency chains, and in one loop too few nodes fit in the processor's
-    // window to overlap them.
-    let dofs = 3 * nodes.start..3 * nodes.end;
-    let [cos, sin] = node_tangent;
-    node_tangents(
-        &pl.base[dofs.clone()],
-        &u[dofs],
-        [&mut cos[nodes.clone()], &mut sin[nodes.clone()]],
-    );
-    let hc = h.coefficients();
     for i in nodes.clone() {
-        let c = if OWN {
-            &model.node_coefficients[i]
-        } else {
-            &hc
-        };
+        let c = &model.node_coefficients[i];
         let (tx, ty) = (node_tangent[0][i], node_tangent[1][i]);
         let z = pl.base[3 * i + 1] + u[3 * i + 1];
         let kin = at.wave_kin.get(i).copied().flatten();

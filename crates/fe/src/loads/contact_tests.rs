@@ -1,7 +1,7 @@
 //! The linear seabed's lanes ([`super::linear_contact`]) against the node loop, on the test line of
 //! `loads/tests.rs`.
 
-use super::tests::{line, N};
+use super::tests::{histories_at_rest, line, small_motion, N};
 use super::*;
 use catena_seabed::law::Law;
 use catena_seabed::linear::LinearSeabed;
@@ -11,25 +11,13 @@ use catena_seabed::linear::LinearSeabed;
 /// damping, with and without the tangent, nodes in contact and two clear of the mudline.
 #[test]
 fn linear_contact_lanes_are_the_node_loop_to_the_bit() {
-    let u: Vec<f64> = (0..3 * N)
-        .map(|g| 2e-3 * (((g * 7919) % 13) as f64 / 13.0 - 0.5))
-        .collect();
-    let v: Vec<f64> = (0..3 * N)
-        .map(|g| 0.4 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
-        .collect();
+    let (u, v) = small_motion();
     let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     for damping in [0.0, 3e3] {
         let law = Law::Linear(LinearSeabed::new(0.3, 2e5, damping).expect("linear"));
         let (model, pl) = line(law);
         let sb = model.seabed.as_ref().expect("seabed");
-        let committed: Vec<SeabedHistory> = (0..N)
-            .map(|i| {
-                let z0 = penetration(&model, &pl, &[0.0; 3 * N], &[0.0; 3 * N], i)
-                    .expect("z")
-                    .0;
-                sb.seabed.start_of_dynamics(z0.max(0.0))
-            })
-            .collect();
+        let committed = histories_at_rest(&model, &pl);
         let m = LoadModel {
             line: &model,
             placement: &pl,

@@ -45,6 +45,28 @@ pub(super) fn line(law: Law) -> (LineModel, Placement) {
     (model, Placement::new(&q))
 }
 
+/// Each node's history at the start of the dynamics, from its penetration with the line at rest.
+pub(super) fn histories_at_rest(model: &LineModel, pl: &Placement) -> Vec<SeabedHistory> {
+    let sb = model.seabed.as_ref().expect("seabed");
+    (0..N)
+        .map(|i| {
+            let (z0, _) = penetration(model, pl, &[0.0; 3 * N], &[0.0; 3 * N], i).expect("z");
+            sb.seabed.start_of_dynamics(z0.max(0.0))
+        })
+        .collect()
+}
+
+/// Displacements of a few millimetres and velocities of every size and direction, `(u, v)`.
+pub(super) fn small_motion() -> (Vec<f64>, Vec<f64>) {
+    let u = (0..3 * N)
+        .map(|g| 2e-3 * (((g * 7919) % 13) as f64 / 13.0 - 0.5))
+        .collect();
+    let v = (0..3 * N)
+        .map(|g| 0.4 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
+        .collect();
+    (u, v)
+}
+
 fn hydro() -> Hydro {
     Hydro {
         water_density: 1025.0,
@@ -68,15 +90,7 @@ fn evaluate(
 ) -> (Vec<f64>, Vec<f64>) {
     let mut asm = Assembler::new(model).expect("assembler");
     let mut scratch = LoadScratch::new(N);
-    let sb = model.seabed.as_ref().expect("seabed");
-    let committed: Vec<SeabedHistory> = (0..N)
-        .map(|i| {
-            let z0 = penetration(model, pl, &[0.0; 3 * N], &[0.0; 3 * N], i)
-                .expect("z")
-                .0;
-            sb.seabed.start_of_dynamics(z0.max(0.0))
-        })
-        .collect();
+    let committed = histories_at_rest(model, pl);
     let pass = if static_pass {
         SeabedPass::Backbone
     } else {
@@ -714,23 +728,11 @@ fn parts_of_the_line_get_the_whole_loads_to_the_bit() {
     };
     let model = model.with_attachments(&[(2.0, body(0.8)), (6.0, body(1.5))]);
     let sb = model.seabed.as_ref().expect("seabed");
-    let committed: Vec<SeabedHistory> = (0..N)
-        .map(|i| {
-            let z0 = penetration(&model, &pl, &[0.0; 3 * N], &[0.0; 3 * N], i)
-                .expect("z")
-                .0;
-            sb.seabed.start_of_dynamics(z0.max(0.0))
-        })
-        .collect();
+    let committed = histories_at_rest(&model, &pl);
     let anchors: Vec<f64> = (0..N)
         .map(|i| pl.base[3 * i] - [0.004, -0.004, 0.03, -0.03][i % 4])
         .collect();
-    let u: Vec<f64> = (0..3 * N)
-        .map(|g| 2e-3 * (((g * 7919) % 13) as f64 / 13.0 - 0.5))
-        .collect();
-    let v: Vec<f64> = (0..3 * N)
-        .map(|g| 0.4 * (((g * 104_729) % 17) as f64 / 17.0 - 0.5))
-        .collect();
+    let (u, v) = small_motion();
     let h = hydro();
     let m = LoadModel {
         line: &model,
