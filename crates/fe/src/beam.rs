@@ -38,7 +38,9 @@
 //! [`ELEMENT_LANES`] elements at once (the assembly's path), in loops over the lanes that the
 //! compiler turns into vector instructions: the same operations in the same order as
 //! [`corotational_beam_chord`], so the same values to the bit (tested), with the arctangent's
-//! reductions and the angle wrap chosen by selects instead of branches.
+//! reductions and the angle wrap chosen by selects instead of branches. Both kernels write the
+//! tangent's upper triangle from 13 of its 21 entries (the second node's translations are the
+//! first's negated: [`fold_tangent`]).
 
 /// Section properties of an element.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -298,10 +300,10 @@ pub fn corotational_beam_chord_k(
     if with_stiffness {
         let gq = n / l;
         let gm = (m1 + m2) / (l * l);
-        for i in 0..6 {
-            // Symmetric: the upper triangle, mirrored.
-            for j in i..6 {
-                let v = tangent_entry(
+        let mut upper = [[0.0; 1]; 21];
+        fold_tangent(
+            |i, j, _| {
+                tangent_entry(
                     ka,
                     kb,
                     (r[i], r[j]),
@@ -310,10 +312,14 @@ pub fn corotational_beam_chord_k(
                     (b2[i], b2[j]),
                     gq,
                     gm,
-                );
-                k[i][j] = v;
-                k[j][i] = v;
-            }
+                )
+            },
+            &mut upper,
+        );
+        // Symmetric: the upper triangle, mirrored.
+        for (&(i, j), &[v]) in UPPER_PAIRS.iter().zip(&upper) {
+            k[i][j] = v;
+            k[j][i] = v;
         }
     }
     BeamResponse {
@@ -566,22 +572,65 @@ pub fn corotational_tangent_lanes<const L: usize>(
         gm[k] = (m1 + m2) / (l * l);
         kb[k] = inp.kb[k];
     }
-    for i in 0..6 {
-        for j in i..6 {
-            let dst = &mut kout[upper_index(i, j)];
+    let entry = |i: usize, j: usize, k: usize| {
+        tangent_entry(
+            inp.ka[k],
+            kb[k],
+            (r[i][k], r[j][k]),
+            (q[i][k], q[j][k]),
+            (b1[i][k], b1[j][k]),
+            (b2[i][k], b2[j][k]),
+            gq[k],
+            gm[k],
+        )
+    };
+    fold_tangent(entry, kout);
+}
+
+/// The tangent's upper triangle ([`upper_index`]) of `L` elements from `entry(i, j, lane)`
+/// ([`tangent_entry`]), computing 13 of its 21 entries: the second node's translations have `r`,
+/// `q`, `b1` and `b2` the first node's negated (`r = (−c, −s, 0, c, s, 0)`,
+/// `q = (s, −c, 0, −s, c, 0)`, `b1` and `b2` `(−s/L, c/L, ·, s/L, −c/L, ·)`), so each product in
+/// an entry's sum, and the sum, changes its sign and nothing else:
+///
+/// ```text
+/// K[i][j+3] = −K[i][j],   K[i+3][j] = −K[i][j],   K[i+3][j+3] = K[i][j]   (i, j ∈ {0, 1}),
+/// ```
+///
+/// and likewise with one index a rotation's. The same values as computing each entry (an entry
+/// that is zero may change its zero's sign, which no sum it is added to can see; tested).
+#[inline(always)]
+fn fold_tangent<const L: usize>(
+    entry: impl Fn(usize, usize, usize) -> f64,
+    kout: &mut [[f64; L]; 21],
+) {
+    // Each computed entry, the entries it is (by upper_index) and those it is negated; the
+    // indices constants, so each entry's sum keeps its known zeros and ones.
+    macro_rules! fold {
+        ($(($i:literal, $j:literal) => [$($t:literal),*] [$($n:literal),*];)*) => {
             for k in 0..L {
-                dst[k] = tangent_entry(
-                    inp.ka[k],
-                    kb[k],
-                    (r[i][k], r[j][k]),
-                    (q[i][k], q[j][k]),
-                    (b1[i][k], b1[j][k]),
-                    (b2[i][k], b2[j][k]),
-                    gq[k],
-                    gm[k],
-                );
+                $(
+                    let v = entry($i, $j, k);
+                    $(kout[$t][k] = v;)*
+                    $(kout[$n][k] = -v;)*
+                )*
             }
-        }
+        };
+    }
+    fold! {
+        (0, 0) => [0, 15] [3];
+        (0, 1) => [1, 16] [4];
+        (0, 2) => [2] [];
+        (0, 5) => [5] [17];
+        (1, 0) => [] [8];
+        (1, 1) => [6, 18] [9];
+        (1, 2) => [7] [];
+        (1, 5) => [10] [19];
+        (2, 0) => [] [12];
+        (2, 1) => [] [13];
+        (2, 2) => [11] [];
+        (2, 5) => [14] [];
+        (5, 5) => [20] [];
     }
 }
 
