@@ -39,8 +39,8 @@
 //! compiler turns into vector instructions: the same operations in the same order as
 //! [`corotational_beam_chord`], so the same values to the bit (tested), with the arctangent's
 //! reductions and the angle wrap chosen by selects instead of branches. Both kernels write the
-//! tangent's upper triangle from 13 of its 21 entries (the second node's translations are the
-//! first's negated: [`fold_tangent`]).
+//! tangent's upper triangle from 4 sums of [`tangent_entry`] and the bending rows (the second
+//! node's translations are the first's negated, a rotation's terms add zeros: [`fold_tangent`]).
 
 /// Section properties of an element.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,15 +119,22 @@ fn end_force(r: f64, b1: f64, b2: f64, (n, m1, m2): (f64, f64, f64)) -> f64 {
 /// from the rows' entries `(r_i, r_j)`, `(b1_i, b1_j)`, `(b2_i, b2_j)`.
 #[inline(always)]
 fn material_entry(ka: f64, kb: f64, r: (f64, f64), b1: (f64, f64), b2: (f64, f64)) -> f64 {
-    let (k11, k12, k22) = (4.0 * kb, 2.0 * kb, 4.0 * kb);
-    let a1 = k11 * b1.0 + k12 * b2.0;
-    let a2 = k12 * b1.0 + k22 * b2.0;
+    let (a1, a2) = bending_row(kb, b1.0, b2.0);
     ka * r.0 * r.1 + a1 * b1.1 + a2 * b2.1
+}
+
+/// Row `i` of the bending part `kb[[4, 2], [2, 4]]·[b1 b2]ᵀ` of the material stiffness, from
+/// `(b1_i, b2_i)`: `(a1, a2)` with the material entry `(i, j)` `ka·r_i·r_j + a1·b1_j + a2·b2_j`.
+#[inline(always)]
+fn bending_row(kb: f64, b1: f64, b2: f64) -> (f64, f64) {
+    let (k11, k12, k22) = (4.0 * kb, 2.0 * kb, 4.0 * kb);
+    (k11 * b1 + k12 * b2, k12 * b1 + k22 * b2)
 }
 
 /// Entry `(i, j)` of the tangent `K = Bᵀ K_l B + gq·q qᵀ + gm·(r qᵀ + q rᵀ)`, `gq = N/L`,
 /// `gm = (M1 + M2)/L²`: the material entry and the geometric terms, in that order (the one place
-/// the tangent is written; the element-by-element kernel and the lanes call it).
+/// the tangent is written; the element-by-element kernel and the lanes call it through
+/// [`fold_tangent`], which takes the entries with a rotation's index from [`bending_row`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn tangent_entry(
@@ -314,6 +321,7 @@ pub fn corotational_beam_chord_k(
                     gm,
                 )
             },
+            |i, _| bending_row(kb, b1[i], b2[i]),
             &mut upper,
         );
         // Symmetric: the upper triangle, mirrored.
@@ -584,53 +592,55 @@ pub fn corotational_tangent_lanes<const L: usize>(
             gm[k],
         )
     };
-    fold_tangent(entry, kout);
+    let row = |i: usize, k: usize| bending_row(kb[k], b1[i][k], b2[i][k]);
+    fold_tangent(entry, row, kout);
 }
 
-/// The tangent's upper triangle ([`upper_index`]) of `L` elements from `entry(i, j, lane)`
-/// ([`tangent_entry`]), computing 13 of its 21 entries: the second node's translations have `r`,
-/// `q`, `b1` and `b2` the first node's negated (`r = (−c, −s, 0, c, s, 0)`,
-/// `q = (s, −c, 0, −s, c, 0)`, `b1` and `b2` `(−s/L, c/L, ·, s/L, −c/L, ·)`), so each product in
-/// an entry's sum, and the sum, changes its sign and nothing else:
+/// The tangent's upper triangle ([`upper_index`]) of `L` elements, from [`tangent_entry`]
+/// (`entry(i, j, lane)`) for the four entries of the first node's translations and from the
+/// bending rows ([`bending_row`], `row(i, lane)`) for the rest; each entry the value the sum of
+/// [`tangent_entry`] gives for it:
 ///
-/// ```text
-/// K[i][j+3] = −K[i][j],   K[i+3][j] = −K[i][j],   K[i+3][j+3] = K[i][j]   (i, j ∈ {0, 1}),
-/// ```
+/// - The second node's translations have `r`, `q`, `b1` and `b2` the first node's negated
+///   (`r = (−c, −s, 0, c, s, 0)`, `q = (s, −c, 0, −s, c, 0)`, `b1` and `b2`
+///   `(−s/L, c/L, ·, s/L, −c/L, ·)`), so each product in an entry's sum, and the sum, changes its
+///   sign and nothing else: `K[i][j+3] = −K[i][j]`, `K[i+3][j+3] = K[i][j]` (`i, j ∈ {0, 1}`), and
+///   likewise with one index a rotation's.
+/// - A rotation's `r` and `q` are zero and its `b1`, `b2` are `(1, −0)` (θ1) or `(−0, 1)` (θ2):
+///   its terms in `r`, `q` add zeros, and the entry is the bending row's `a1` or `a2`:
+///   `K[i][2] = K[2][i] = a1_i`, `K[i][5] = a2_i`, `K[2][2] = a1_2 = 4kb`, `K[2][5] = a2_2 = 2kb`,
+///   `K[5][5] = a2_5 = 4kb`.
 ///
-/// and likewise with one index a rotation's. The same values as computing each entry (an entry
-/// that is zero may change its zero's sign, which no sum it is added to can see; tested).
+/// The same values as computing each entry; an entry that is zero may change its zero's sign,
+/// which no sum it is added to can see (tested: `folded_tangent_is_every_entry_computed`).
 #[inline(always)]
 fn fold_tangent<const L: usize>(
     entry: impl Fn(usize, usize, usize) -> f64,
+    row: impl Fn(usize, usize) -> (f64, f64),
     kout: &mut [[f64; L]; 21],
 ) {
-    // Each computed entry, the entries it is (by upper_index) and those it is negated; the
-    // indices constants, so each entry's sum keeps its known zeros and ones.
-    macro_rules! fold {
-        ($(($i:literal, $j:literal) => [$($t:literal),*] [$($n:literal),*];)*) => {
-            for k in 0..L {
-                $(
-                    let v = entry($i, $j, k);
-                    $(kout[$t][k] = v;)*
-                    $(kout[$n][k] = -v;)*
-                )*
-            }
-        };
-    }
-    fold! {
-        (0, 0) => [0, 15] [3];
-        (0, 1) => [1, 16] [4];
-        (0, 2) => [2] [];
-        (0, 5) => [5] [17];
-        (1, 0) => [] [8];
-        (1, 1) => [6, 18] [9];
-        (1, 2) => [7] [];
-        (1, 5) => [10] [19];
-        (2, 0) => [] [12];
-        (2, 1) => [] [13];
-        (2, 2) => [11] [];
-        (2, 5) => [14] [];
-        (5, 5) => [20] [];
+    for k in 0..L {
+        let (e00, e01, e10, e11) = (
+            entry(0, 0, k),
+            entry(0, 1, k),
+            entry(1, 0, k),
+            entry(1, 1, k),
+        );
+        let ((a1_0, a2_0), (a1_1, a2_1)) = (row(0, k), row(1, k));
+        let ((a1_2, a2_2), (_, a2_5)) = (row(2, k), row(5, k));
+        // By upper_index: (0,0) 0, (0,3) 3, (3,3) 15; (0,1) 1, (0,4) 4, (3,4) 16; (1,3) 8;
+        // (1,1) 6, (1,4) 9, (4,4) 18.
+        (kout[0][k], kout[3][k], kout[15][k]) = (e00, -e00, e00);
+        (kout[1][k], kout[4][k], kout[16][k]) = (e01, -e01, e01);
+        kout[8][k] = -e10;
+        (kout[6][k], kout[9][k], kout[18][k]) = (e11, -e11, e11);
+        // (0,2) 2, (2,3) 12; (0,5) 5, (3,5) 17; (1,2) 7, (2,4) 13; (1,5) 10, (4,5) 19.
+        (kout[2][k], kout[12][k]) = (a1_0, -a1_0);
+        (kout[5][k], kout[17][k]) = (a2_0, -a2_0);
+        (kout[7][k], kout[13][k]) = (a1_1, -a1_1);
+        (kout[10][k], kout[19][k]) = (a2_1, -a2_1);
+        // (2,2) 11, (2,5) 14, (5,5) 20.
+        (kout[11][k], kout[14][k], kout[20][k]) = (a1_2, a2_2, a2_5);
     }
 }
 

@@ -311,10 +311,10 @@ fn upper_index_numbers_the_upper_triangle_by_rows() {
     }
 }
 
-/// The 13 entries [`fold_tangent`] computes give each of the upper triangle's
-/// 21 entries as [`tangent_entry`] computes it on its own, to the bit (a zero may differ in its
-/// sign only), on chords in every direction, horizontal and vertical ones included: a wrong fold
-/// or sign in the table fails.
+/// The upper triangle [`fold_tangent`] writes (four sums, the bending rows and their signs) is
+/// each of the 21 entries as [`tangent_entry`] computes it on its own, to the bit (a zero may
+/// differ in its sign only), on chords in every direction, horizontal and vertical ones included:
+/// a wrong fold, row or sign fails.
 #[test]
 fn folded_tangent_is_every_entry_computed() {
     let mut rng = 11u64;
