@@ -614,6 +614,7 @@ pub fn corotational_tangent_lanes<const L: usize>(
 /// The same values as computing each entry; an entry that is zero may change its zero's sign,
 /// which no sum it is added to can see (tested: `folded_tangent_is_every_entry_computed`).
 #[inline(always)]
+#[allow(clippy::needless_range_loop)]
 fn fold_tangent<const L: usize>(
     entry: impl Fn(usize, usize, usize) -> f64,
     row: impl Fn(usize, usize) -> (f64, f64),
