@@ -96,6 +96,24 @@ fn basis(dx: f64, dz: f64) -> Basis {
     Basis { l, r, q, b1, b2 }
 }
 
+impl Basis {
+    /// Entry `(i, j)` of the tangent ([`tangent_entry`]) with `(ka, kb)` and `(gq, gm)`.
+    #[inline(always)]
+    fn tangent_entry(&self, (ka, kb): (f64, f64), (gq, gm): (f64, f64), i: usize, j: usize) -> f64 {
+        let Basis { r, q, b1, b2, .. } = self;
+        tangent_entry(
+            ka,
+            kb,
+            (r[i], r[j]),
+            (q[i], q[j]),
+            (b1[i], b1[j]),
+            (b2[i], b2[j]),
+            gq,
+            gm,
+        )
+    }
+}
+
 /// The basic response `(N, M1, M2) = K_l·(u, θ1l, θ2l)` with `K_l = diag(ka, kb·[[4, 2], [2, 4]])`
 /// (`ka = EA/L0`, `kb = EI/L0`; for the damping, `β` times them on the deformation rates): the one
 /// place the element's material law is written. Every kernel (element by element, in lanes, the
@@ -294,7 +312,8 @@ pub fn corotational_beam_chord_k(
     (ka, kb): (f64, f64),
     with_stiffness: bool,
 ) -> BeamResponse {
-    let Basis { l, r, q, b1, b2 } = basis(dx, dz);
+    let bs = basis(dx, dz);
+    let Basis { l, r, b1, b2, .. } = bs;
     let beta = crate::fastmath::atan2(dz, dx);
     let t1 = wrap(theta1 - beta);
     let t2 = wrap(theta2 - beta);
@@ -309,18 +328,7 @@ pub fn corotational_beam_chord_k(
         let gm = (m1 + m2) / (l * l);
         let mut upper = [[0.0; 1]; 21];
         fold_tangent(
-            |i, j, _| {
-                tangent_entry(
-                    ka,
-                    kb,
-                    (r[i], r[j]),
-                    (q[i], q[j]),
-                    (b1[i], b1[j]),
-                    (b2[i], b2[j]),
-                    gq,
-                    gm,
-                )
-            },
+            |i, j, _| bs.tangent_entry((ka, kb), (gq, gm), i, j),
             |i, _| bending_row(kb, b1[i], b2[i]),
             &mut upper,
         );

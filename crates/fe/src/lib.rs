@@ -41,6 +41,8 @@ pub mod partner;
 pub mod sectioned;
 pub mod sparse;
 pub mod statics;
+#[cfg(test)]
+mod test_rng;
 pub mod vessel;
 pub mod wave_sampling;
 pub mod waves;

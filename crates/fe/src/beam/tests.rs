@@ -1,4 +1,5 @@
 use super::*;
+use crate::test_rng::uniform;
 
 /// The kernel against its derivation written as matrix products (nalgebra): with
 /// `B = [r; e3 − q/L; e6 − q/L]` (3×6) and `K_l = diag(EA/L0, EI/L0·[[4, 2], [2, 4]])`,
@@ -206,14 +207,6 @@ fn wrap_is_in_range() {
     }
 }
 
-/// A small deterministic generator for the lanes tests (uniform in [0, 1)).
-fn uniform(state: &mut u64) -> f64 {
-    *state = state
-        .wrapping_mul(6_364_136_223_846_793_005)
-        .wrapping_add(1_442_695_040_888_963_407);
-    (*state >> 11) as f64 / (1u64 << 53) as f64
-}
-
 /// The lanes kernels give [`corotational_beam_chord_k`]'s forces, axial force, end moments and
 /// tangent to the bit, on chords in every quadrant (every reduction of the arctangent), chords
 /// pointing along −x with dz of either sign (the chord angle jumps between ±π there, as on a
@@ -330,21 +323,12 @@ fn folded_tangent_is_every_entry_computed() {
         let th2 = ang + 0.2 * (2.0 * uniform(&mut rng) - 1.0);
         let (l0, ka, kb) = (4.0, SEC.ea / 4.0, SEC.ei / 4.0);
         let got = corotational_beam_chord_k(dx, dz, th1, th2, l0, (ka, kb), true);
-        let Basis { l, r, q, b1, b2 } = basis(dx, dz);
+        let bs = basis(dx, dz);
         let (m1, m2) = (-got.moment1, got.moment2);
-        let (gq, gm) = (got.axial / l, (m1 + m2) / (l * l));
+        let (gq, gm) = (got.axial / bs.l, (m1 + m2) / (bs.l * bs.l));
         for i in 0..6 {
             for j in i..6 {
-                let want = tangent_entry(
-                    ka,
-                    kb,
-                    (r[i], r[j]),
-                    (q[i], q[j]),
-                    (b1[i], b1[j]),
-                    (b2[i], b2[j]),
-                    gq,
-                    gm,
-                );
+                let want = bs.tangent_entry((ka, kb), (gq, gm), i, j);
                 let (a, b) = (got.stiffness[i][j], got.stiffness[j][i]);
                 // `==` takes a zero of either sign for the other; any other value to the bit.
                 assert!(

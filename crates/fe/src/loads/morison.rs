@@ -238,14 +238,7 @@ fn morison_lanes<const WITH_C: bool>(k: Constants, inp: &Inputs<'_>, out: Output
 mod tests {
     use super::*;
     use crate::environment::Coefficients;
-
-    /// xorshift64*: the test's pseudo-random numbers in [0, 1).
-    fn uniform(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::uniform;
 
     /// The lanes give each node's drag, damping block and wave inertia to the bit of
     /// [`Hydro::drag`] and [`Hydro::wave_inertia`] node by node, over 1000 random nodes (a current
